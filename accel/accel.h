@@ -1,0 +1,40 @@
+#pragma once
+// Every structure behind one name-based factory, as a std::variant visited once per render so
+// that each structure's traversal loop is compiled on its own.
+
+#include "geometry.h"
+#include "naive.h"
+#include "stats.h"
+
+#include <nlohmann/json.hpp>
+
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <variant>
+#include <vector>
+
+namespace accel {
+
+/// A bad structure name, knob or resource limit; what() is one line naming the knob.
+struct ConfigError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+using AnyAccel = std::variant<Naive>;
+
+/// Names accepted by make_accel, in display order.
+std::vector<std::string> accel_names();
+
+/// Builds the structure `name` over `boxes`. `params` holds that structure's knobs (unknown keys
+/// are rejected). Throws ConfigError.
+AnyAccel make_accel(std::string_view name, const nlohmann::json& params,
+                    std::span<const Aabb> boxes);
+
+/// The exact parameters a built structure used, every knob spelled out.
+nlohmann::json params_of(const AnyAccel& a);
+std::string name_of(const AnyAccel& a);
+const BuildStats& stats_of(const AnyAccel& a);
+
+}  // namespace accel
