@@ -1,0 +1,109 @@
+#pragma once
+// Closest-hit and any-hit queries of a scene's geometry through one acceleration structure.
+//
+// This is where the traversal contract meets the primitives: the structure calls the leaf
+// function with a global primitive id, and the leaf function runs the one shared primitive
+// routine. Unbounded planes are tested here, beside the structure, the same way for all.
+// with_intersector() dispatches once per render on (structure, kinds, counting), so each
+// combination's loops are compiled on their own, with no virtual call per node or primitive.
+
+#include "geometry.h"
+
+#include "accel/accel.h"
+
+#include <cstdint>
+#include <variant>
+
+namespace tracer {
+
+/// Result of a closest-hit query.
+struct Hit {
+  static constexpr std::uint32_t kNone = 0xffffffffu;
+  static constexpr std::uint32_t kPlaneBit = 0x80000000u;  ///< Set on ids of unbounded planes.
+
+  float t = accel::kInfinity;   ///< Hit distance along the ray, in units of |dir|.
+  std::uint32_t prim = kNone;   ///< Global bounded id, or kPlaneBit | plane index.
+
+  bool found() const { return prim != kNone; }
+  bool is_plane() const { return found() && (prim & kPlaneBit) != 0; }
+};
+
+template <KindSet Kinds, bool Count, class Structure>
+class Intersector {
+ public:
+  static constexpr bool kCounting = Count;
+
+  Intersector(const Geometry& geometry, const Structure& structure,
+              accel::TraversalCounters* counters = nullptr)
+      : geo_(&geometry), structure_(&structure), counters_(counters) {}
+
+  /// The same intersector writing its counters elsewhere (one set per thread).
+  Intersector with_counters(accel::TraversalCounters* counters) const {
+    return Intersector(*geo_, *structure_, counters);
+  }
+
+  /// Nearest hit in (ray.tmin, ray.tmax). Ties in t go to the lower id, so every structure
+  /// reports the same primitive whatever order it visits them in.
+  Hit closest(Ray ray) const {
+    Hit hit;
+    for (std::uint32_t i = 0; i < geo_->planes.size(); ++i) {
+      const float t = intersect(geo_->planes[i], ray);
+      if (t < ray.tmax) {
+        ray.tmax = t;
+        hit = {t, Hit::kPlaneBit | i};
+      }
+    }
+    const Geometry& geo = *geo_;
+    auto leaf = [&geo, &hit](std::uint32_t id, Ray& r) {
+      const float t = geo.intersect_bounded<Kinds>(id, r);
+      // Plane ids carry kPlaneBit, so at an exact tie a bounded primitive wins over a plane.
+      if (t < r.tmax || (t == r.tmax && t < accel::kInfinity && id < hit.prim)) {
+        r.tmax = t;
+        hit = {t, id};
+        return true;
+      }
+      return false;
+    };
+    structure_->template intersect<Count>(ray, leaf, counters_);
+    return hit;
+  }
+
+  /// True when anything lies in (ray.tmin, ray.tmax).
+  bool occluded(const Ray& ray) const {
+    for (const Plane& pl : geo_->planes)
+      if (intersect(pl, ray) < ray.tmax) return true;
+    const Geometry& geo = *geo_;
+    auto leaf = [&geo](std::uint32_t id, Ray& r) {
+      return geo.intersect_bounded<Kinds>(id, r) < r.tmax;
+    };
+    return structure_->template occluded<Count>(ray, leaf, counters_);
+  }
+
+  const Geometry& geometry() const { return *geo_; }
+
+ private:
+  const Geometry* geo_;
+  const Structure* structure_;
+  accel::TraversalCounters* counters_;
+};
+
+/// Calls fn(intersector) with the intersector specialised for this structure, this scene's kind
+/// set and the counting flag. Everything fn instantiates is compiled once per combination.
+template <class Fn>
+decltype(auto) with_intersector(const Geometry& geometry, const accel::AnyAccel& any,
+                                bool counting, Fn&& fn) {
+  return std::visit(
+      [&](const auto& structure) -> decltype(auto) {
+        using S = std::decay_t<decltype(structure)>;
+        const bool spheres_only = geometry.kind_set() == KindSet::SpheresOnly;
+        if (counting) {
+          if (spheres_only) return fn(Intersector<KindSet::SpheresOnly, true, S>(geometry, structure));
+          return fn(Intersector<KindSet::Mixed, true, S>(geometry, structure));
+        }
+        if (spheres_only) return fn(Intersector<KindSet::SpheresOnly, false, S>(geometry, structure));
+        return fn(Intersector<KindSet::Mixed, false, S>(geometry, structure));
+      },
+      any);
+}
+
+}  // namespace tracer
