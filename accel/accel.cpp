@@ -1,13 +1,20 @@
 #include "accel.h"
 
-#include <chrono>
+#include <unistd.h>
 
 namespace accel {
+
+std::uint64_t memory_budget_bytes(const BuildLimits& limits) {
+  if (limits.max_memory_bytes) return limits.max_memory_bytes;
+  const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGE_SIZE);
+  if (pages <= 0 || page <= 0) return std::uint64_t(4) << 30;
+  return std::uint64_t(pages) * std::uint64_t(page) / 4;
+}
 
 std::vector<std::string> accel_names() { return {"naive"}; }
 
 AnyAccel make_accel(std::string_view name, const nlohmann::json& params,
-                    std::span<const Aabb> boxes) {
+                    std::span<const Aabb> boxes, const BuildLimits&) {
   if (!params.is_null() && !params.is_object()) throw ConfigError("accel parameters must be an object");
   if (name == "naive") {
     if (!params.is_null() && !params.empty())

@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cstdint>
 #include <span>
 #include <stdexcept>
 #include <string>
@@ -22,6 +23,15 @@ struct ConfigError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// Limits every builder honours; a build that would pass one throws ConfigError naming the knob.
+struct BuildLimits {
+  /// Most bytes a structure may allocate for nodes and references; 0 means 25% of physical RAM.
+  std::uint64_t max_memory_bytes = 0;
+};
+
+/// Resolves 0 to the default budget of 25% of physical memory.
+std::uint64_t memory_budget_bytes(const BuildLimits& limits);
+
 using AnyAccel = std::variant<Naive>;
 
 /// Names accepted by make_accel, in display order.
@@ -30,7 +40,7 @@ std::vector<std::string> accel_names();
 /// Builds the structure `name` over `boxes`. `params` holds that structure's knobs (unknown keys
 /// are rejected). Throws ConfigError.
 AnyAccel make_accel(std::string_view name, const nlohmann::json& params,
-                    std::span<const Aabb> boxes);
+                    std::span<const Aabb> boxes, const BuildLimits& limits = {});
 
 /// The exact parameters a built structure used, every knob spelled out.
 nlohmann::json params_of(const AnyAccel& a);
