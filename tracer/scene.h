@@ -22,6 +22,7 @@ struct Camera {
   int width = 640;                  ///< Image width, pixels.
   int height = 480;                 ///< Image height, pixels.
   int samples_per_pixel = 1;        ///< Samples per pixel (deterministic stratified jitter when > 1).
+  float hither = 0.0f;              ///< Near clip distance along the view direction, world units (NFF).
 };
 
 struct PointLight {
@@ -30,7 +31,9 @@ struct PointLight {
   Color color{1.0f};                 ///< Spectral tint multiplying the power.
 };
 
-enum class MaterialType : std::uint8_t { Diffuse, Mirror, Dielectric };
+/// Nff: the classic NFF/SPD surface (albedo as colour, kd, ks, shininess, transmittance, ior),
+/// shaded by tracer/nff_shading.h.
+enum class MaterialType : std::uint8_t { Diffuse, Mirror, Dielectric, Nff };
 
 struct Material {
   std::string name;                    ///< Unique name the primitives refer to.
@@ -41,6 +44,9 @@ struct Material {
   Color reflectance{1.0f};             ///< Mirror: reflectance per channel in [0, 1].
   float ior = 1.5f;                    ///< Dielectric: index of refraction (> 0).
   Color absorption{0.0f};              ///< Dielectric: Beer–Lambert absorption per world unit.
+  float kd = 1.0f;                     ///< Nff: diffuse coefficient multiplying albedo, >= 0.
+  float ks = 0.0f;                     ///< Nff: reflection coefficient, also the highlight weight, >= 0.
+  float transmittance = 0.0f;          ///< Nff: weight of the refracted ray (NFF T), >= 0; ior used when > 0.
 };
 
 struct RenderSettings {

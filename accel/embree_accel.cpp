@@ -1,0 +1,166 @@
+#include "embree_accel.h"
+
+#include "accel.h"
+#include "params_json.h"
+
+#include <algorithm>
+#include <chrono>
+#include <limits>
+#include <string>
+
+namespace accel {
+
+void to_json(nlohmann::json& j, const EmbreeParams& p) {
+  j = {{"build_quality", p.build_quality == EmbreeQuality::High ? "high" : "medium"},
+       {"robust", p.robust},
+       {"build_threads", p.build_threads}};
+}
+
+void from_json(const nlohmann::json& j, EmbreeParams& p) {
+  KnobReader r("embree", j);
+  r.read_enum("build_quality", p.build_quality,
+              {{"medium", EmbreeQuality::Medium}, {"high", EmbreeQuality::High}});
+  r.read("robust", p.robust);
+  r.read("build_threads", p.build_threads, 0, 1024);
+  r.finish();
+}
+
+namespace embree_detail {
+
+/// Bytes Embree holds, from its memory monitor callback, and the first error it reported.
+struct MemoryMonitor {
+  std::int64_t bytes = 0;       ///< Currently allocated.
+  std::int64_t peak = 0;        ///< Most ever allocated.
+  std::int64_t budget = 0;      ///< Allocation refused beyond this.
+  bool over_budget = false;     ///< An allocation was refused.
+  std::string error;            ///< Embree's first error message, if any.
+};
+
+namespace {
+
+bool on_memory(void* user, ssize_t bytes, bool post) {
+  // Embree calls once per (de)allocation, before it (post = false; refusable) or after it.
+  auto* m = static_cast<MemoryMonitor*>(user);
+  if (!post && bytes > 0 && m->bytes + bytes > m->budget) {
+    m->over_budget = true;
+    return false;  // Embree fails the build with RTC_ERROR_OUT_OF_MEMORY
+  }
+  m->bytes += bytes;
+  m->peak = std::max(m->peak, m->bytes);
+  return true;
+}
+
+void on_error(void* user, RTCError, const char* message) {
+  auto* m = static_cast<MemoryMonitor*>(user);
+  if (m->error.empty()) m->error = message ? message : "unknown error";
+}
+
+struct BoxesView {
+  const Aabb* boxes;
+};
+
+void bounds_fn(const RTCBoundsFunctionArguments* args) {
+  const Aabb& b = static_cast<const BoxesView*>(args->geometryUserPtr)->boxes[args->primID];
+  // Padded outward by a few ulps, as Bvh pads its nodes: a hit computed on the box face must
+  // not be culled by rounding.
+  constexpr float rel = 4.0f * std::numeric_limits<float>::epsilon();
+  auto pad = [](float lo, float hi) { return std::max(std::abs(lo), std::abs(hi)) * rel; };
+  const float px = pad(b.lo.x, b.hi.x), py = pad(b.lo.y, b.hi.y), pz = pad(b.lo.z, b.hi.z);
+  RTCBounds* o = args->bounds_o;
+  o->lower_x = b.lo.x - px;
+  o->lower_y = b.lo.y - py;
+  o->lower_z = b.lo.z - pz;
+  o->upper_x = b.hi.x + px;
+  o->upper_y = b.hi.y + py;
+  o->upper_z = b.hi.z + pz;
+}
+
+const QueryContext& query_of(RTCIntersectContext* c) { return *reinterpret_cast<const QueryContext*>(c); }
+
+void intersect_fn(const RTCIntersectFunctionNArguments* args) {
+  if (!args->valid[0]) return;
+  const QueryContext& q = query_of(args->context);
+  if (q.test(q, args->primID)) {
+    auto* rh = reinterpret_cast<RTCRayHit*>(args->rayhit);  // N == 1 for rtcIntersect1
+    rh->ray.tfar = widen(q.ray->tmax, 1.0f);
+    rh->hit.primID = args->primID;
+    rh->hit.geomID = args->geomID;
+  }
+}
+
+void occluded_fn(const RTCOccludedFunctionNArguments* args) {
+  if (!args->valid[0]) return;
+  const QueryContext& q = query_of(args->context);
+  if (q.test(q, args->primID)) reinterpret_cast<RTCRay*>(args->ray)->tfar = -kInfinity;
+}
+
+}  // namespace
+}  // namespace embree_detail
+
+EmbreeAccel::EmbreeAccel(std::span<const Aabb> boxes, const EmbreeParams& params,
+                         const BuildLimits& limits)
+    : params_(params), monitor_(std::make_unique<embree_detail::MemoryMonitor>()) {
+  {
+    EmbreeParams checked;  // the same range checks as the JSON knobs, for structs built in code
+    from_json(nlohmann::json(params_), checked);
+  }
+  const auto start = std::chrono::steady_clock::now();
+  const std::uint64_t budget = memory_budget_bytes(limits);
+  monitor_->budget = budget > std::uint64_t(std::numeric_limits<std::int64_t>::max())
+                         ? std::numeric_limits<std::int64_t>::max()
+                         : std::int64_t(budget);
+
+  const std::string config =
+      params_.build_threads > 0 ? "threads=" + std::to_string(params_.build_threads) : "";
+  device_ = embree_detail::Device(rtcNewDevice(config.c_str()));
+  if (!device_.get()) throw ConfigError("embree: rtcNewDevice failed (config '" + config + "')");
+  rtcSetDeviceErrorFunction(device_.get(), embree_detail::on_error, monitor_.get());
+  rtcSetDeviceMemoryMonitorFunction(device_.get(), embree_detail::on_memory, monitor_.get());
+
+  scene_ = embree_detail::Scene(rtcNewScene(device_.get()));
+  rtcSetSceneBuildQuality(scene_.get(), params_.build_quality == EmbreeQuality::High
+                                            ? RTC_BUILD_QUALITY_HIGH
+                                            : RTC_BUILD_QUALITY_MEDIUM);
+  rtcSetSceneFlags(scene_.get(), params_.robust ? RTC_SCENE_FLAG_ROBUST : RTC_SCENE_FLAG_NONE);
+
+  embree_detail::BoxesView view{boxes.data()};
+  if (!boxes.empty()) {
+    RTCGeometry geom = rtcNewGeometry(device_.get(), RTC_GEOMETRY_TYPE_USER);
+    rtcSetGeometryUserPrimitiveCount(geom, unsigned(boxes.size()));
+    rtcSetGeometryUserData(geom, &view);  // read only by bounds_fn, during the commit below
+    rtcSetGeometryBoundsFunction(geom, embree_detail::bounds_fn, nullptr);
+    rtcSetGeometryIntersectFunction(geom, embree_detail::intersect_fn);
+    rtcSetGeometryOccludedFunction(geom, embree_detail::occluded_fn);
+    rtcCommitGeometry(geom);
+    rtcAttachGeometry(scene_.get(), geom);
+    rtcReleaseGeometry(geom);
+  }
+  rtcCommitScene(scene_.get());
+  if (monitor_->over_budget)
+    throw ConfigError("embree: the build needs more than the memory budget of " +
+                      std::to_string(budget) + " bytes (raise --max-memory)");
+  if (rtcGetDeviceError(device_.get()) != RTC_ERROR_NONE || !monitor_->error.empty())
+    throw ConfigError("embree: build failed: " + monitor_->error);
+
+  stats_.primitives = boxes.size();
+  stats_.prim_refs = boxes.size();
+  stats_.memory_bytes = std::uint64_t(monitor_->peak);
+  stats_.build_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+EmbreeAccel::EmbreeAccel(EmbreeAccel&&) noexcept = default;
+
+EmbreeAccel& EmbreeAccel::operator=(EmbreeAccel&& o) noexcept {
+  // Release our scene and device before the monitor their release reports to.
+  scene_ = std::move(o.scene_);
+  device_ = std::move(o.device_);
+  monitor_ = std::move(o.monitor_);
+  params_ = o.params_;
+  stats_ = o.stats_;
+  return *this;
+}
+
+EmbreeAccel::~EmbreeAccel() = default;
+
+}  // namespace accel

@@ -1,0 +1,188 @@
+#pragma once
+// Embree 3 as a peer structure, measured in the same run rather than reimplemented: one user
+// geometry with one primitive per box, whose intersect and occluded callbacks call the caller's
+// leaf function through a trampoline. Built only when Embree 3 was found
+// (ACCELBENCH_HAVE_EMBREE).
+//
+// Embree's BVH is opaque: nodes, leaves, depth and SAH cost are not visible through its API, nor
+// are nodes visited or boxes tested per ray; they are reported as 0 (see stats_note()). The
+// leaf callbacks are counted, so prims_tested is exact.
+
+#include "geometry.h"
+#include "stats.h"
+
+#include <embree3/rtcore.h>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <type_traits>
+#include <utility>
+
+namespace accel {
+
+struct BuildLimits;
+
+/// Embree's BVH build quality.
+enum class EmbreeQuality { Medium, High };
+
+/// Knobs of the Embree adapter.
+struct EmbreeParams {
+  /// Build quality: RTC_BUILD_QUALITY_MEDIUM or RTC_BUILD_QUALITY_HIGH (slower build, SAH splits).
+  EmbreeQuality build_quality = EmbreeQuality::High;
+  /// RTC_SCENE_FLAG_ROBUST: conservative box tests, so no primitive is culled by rounding.
+  bool robust = true;
+  /// Threads Embree's TBB builder may use; 0 = Embree's default (every core). The other
+  /// builders are single-threaded, so 1 keeps build times comparable.
+  int build_threads = 1;
+};
+
+void to_json(nlohmann::json& j, const EmbreeParams& p);
+/// Reads the knobs; unknown keys, wrong types and out-of-range values throw ConfigError.
+void from_json(const nlohmann::json& j, EmbreeParams& p);
+
+namespace embree_detail {
+
+/// Move-only owner of an Embree handle, released with `Release`.
+template <class Handle, void (*Release)(Handle)>
+class RtcHandle {
+ public:
+  RtcHandle() = default;
+  explicit RtcHandle(Handle h) : h_(h) {}
+  RtcHandle(RtcHandle&& o) noexcept : h_(std::exchange(o.h_, nullptr)) {}
+  RtcHandle& operator=(RtcHandle&& o) noexcept {
+    if (this != &o) {
+      reset();
+      h_ = std::exchange(o.h_, nullptr);
+    }
+    return *this;
+  }
+  RtcHandle(const RtcHandle&) = delete;
+  RtcHandle& operator=(const RtcHandle&) = delete;
+  ~RtcHandle() { reset(); }
+
+  Handle get() const { return h_; }
+
+ private:
+  void reset() {
+    if (h_) Release(h_);
+    h_ = nullptr;
+  }
+  Handle h_ = nullptr;
+};
+
+using Device = RtcHandle<RTCDevice, rtcReleaseDevice>;
+using Scene = RtcHandle<RTCScene, rtcReleaseScene>;
+
+/// What the callbacks need during one query. Embree hands the callbacks a pointer to `rtc`,
+/// which is the first member of a standard-layout struct, so it converts back to the whole.
+struct QueryContext {
+  RTCIntersectContext rtc;  ///< Must stay first.
+  Ray* ray;                 ///< Our ray; the leaf function shortens its tmax.
+  void* leaf;               ///< The caller's leaf closure.
+  TraversalCounters* counters;  ///< Counting pass only; else null.
+  /// Calls the leaf closure for one primitive (one instantiation per closure type).
+  bool (*test)(const QueryContext& q, std::uint32_t prim);
+};
+static_assert(std::is_standard_layout_v<QueryContext>, "Embree's context must be the first member");
+
+template <bool Count, class LeafFn>
+bool call_leaf(const QueryContext& q, std::uint32_t prim) {
+  if constexpr (Count) q.counters->prims_tested++;
+  return (*static_cast<LeafFn*>(q.leaf))(prim, *q.ray);
+}
+
+/// Widens a ray bound by a relative margin: Embree must still visit a primitive whose t equals
+/// the current hit (ties go to the lower id) or lies on its box face; see Bvh::kIntervalSlack.
+inline float widen(float t, float direction) {
+  constexpr float kSlack = 16.0f * gamma_bound(1);
+  return t + direction * std::abs(t) * kSlack;
+}
+
+struct MemoryMonitor;
+
+}  // namespace embree_detail
+
+class EmbreeAccel {
+ public:
+  static constexpr const char* kName = "embree";
+
+  EmbreeAccel() = default;
+  /// Builds an Embree scene over `boxes` (primitive id = index). Throws ConfigError when Embree
+  /// fails or its allocations would pass the memory budget of `limits`.
+  EmbreeAccel(std::span<const Aabb> boxes, const EmbreeParams& params, const BuildLimits& limits);
+  EmbreeAccel(EmbreeAccel&&) noexcept;
+  EmbreeAccel& operator=(EmbreeAccel&&) noexcept;
+  ~EmbreeAccel();
+
+  /// Closest hit through rtcIntersect1; leaf_fn shortens ray.tmax and Embree's tfar follows.
+  template <bool Count = false, class LeafFn>
+  void intersect(Ray& ray, LeafFn&& leaf_fn, TraversalCounters* counters = nullptr) const {
+    if constexpr (Count) counters->rays++;
+    embree_detail::QueryContext q = context<Count>(ray, leaf_fn, counters);
+    RTCRayHit rh;
+    fill(rh.ray, ray);
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(scene_.get(), &q.rtc, &rh);
+  }
+
+  /// Any hit through rtcOccluded1: stops at the first primitive whose leaf_fn returns true.
+  template <bool Count = false, class LeafFn>
+  bool occluded(const Ray& ray_in, LeafFn&& leaf_fn, TraversalCounters* counters = nullptr) const {
+    if constexpr (Count) counters->rays++;
+    Ray ray = ray_in;
+    embree_detail::QueryContext q = context<Count>(ray, leaf_fn, counters);
+    RTCRay r;
+    fill(r, ray);
+    rtcOccluded1(scene_.get(), &q.rtc, &r);
+    return r.tfar == -kInfinity;
+  }
+
+  const EmbreeParams& params() const { return params_; }
+  const BuildStats& stats() const { return stats_; }
+  /// Which statistics Embree cannot report.
+  static const char* stats_note() {
+    return "embree: nodes, leaves, depth, sah_cost, nodes_visited and boxes_tested are not "
+           "visible through Embree's API and are reported as 0; memory_bytes is what Embree "
+           "allocated";
+  }
+
+ private:
+  template <bool Count, class LeafFn>
+  static embree_detail::QueryContext context(Ray& ray, LeafFn& leaf_fn, TraversalCounters* counters) {
+    using L = std::remove_reference_t<LeafFn>;
+    embree_detail::QueryContext q;
+    rtcInitIntersectContext(&q.rtc);
+    q.ray = &ray;
+    q.leaf = const_cast<void*>(static_cast<const void*>(std::addressof(leaf_fn)));
+    q.counters = counters;
+    q.test = &embree_detail::call_leaf<Count, L>;
+    return q;
+  }
+  static void fill(RTCRay& r, const Ray& ray) {
+    r.org_x = ray.org.x;
+    r.org_y = ray.org.y;
+    r.org_z = ray.org.z;
+    r.tnear = embree_detail::widen(ray.tmin, -1.0f);
+    r.dir_x = ray.dir.x;
+    r.dir_y = ray.dir.y;
+    r.dir_z = ray.dir.z;
+    r.time = 0.0f;
+    r.tfar = embree_detail::widen(ray.tmax, 1.0f);
+    r.mask = 0xffffffffu;
+    r.id = 0;
+    r.flags = 0;
+  }
+
+  EmbreeParams params_;
+  // Declared before the scene so that it is released after it (members die in reverse order).
+  std::unique_ptr<embree_detail::MemoryMonitor> monitor_;
+  embree_detail::Device device_;
+  embree_detail::Scene scene_;
+  BuildStats stats_;
+};
+
+}  // namespace accel

@@ -1,0 +1,315 @@
+// Google Benchmark: closest-hit tracing through every structure on the paper's scenes, one
+// thread, 1024x768 camera rays (coherent) and rays spawned off the camera hits (incoherent),
+// plus build times over a grid of knobs.
+//
+// Every structure's hits are validated against naive before it is timed: all rays, same
+// primitive, bit-equal t. A mismatch skips that benchmark with an error and makes the binary
+// exit non-zero. Naive's reference pass (8000 spheres x 786k rays, about 7 s) is computed once
+// per process and shared; naive itself is timed on every 64th ray of spheres8000, which is what
+// its rate and the speedup counters are based on (the counter names say so). Times and rates
+// are CPU time of the tracing thread, so other processes on a shared machine do not count.
+//
+//   build/bin/bench_trace --benchmark_filter='Trace/spheres8000'
+
+#include "accel/accel.h"
+#include "scenes_gen/generators.h"
+#include "tracer/camera.h"
+#include "tracer/intersector.h"
+#include "tracer/offset_ray.h"
+
+#include <benchmark/benchmark.h>
+
+#include <bit>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <ctime>
+#include <map>
+#include <memory>
+#include <random>
+#include <string>
+#include <vector>
+
+namespace {
+
+using accel::Ray;
+using accel::Vec3;
+using nlohmann::json;
+using tracer::Hit;
+
+constexpr int kWidth = 1024;
+constexpr int kHeight = 768;
+/// naive on spheres8000 is timed on every kNaiveStride-th ray.
+constexpr std::size_t kNaiveStride = 64;
+
+int g_validation_failures = 0;
+
+enum class RaySet { Coherent, Incoherent };
+const char* ray_set_name(RaySet s) { return s == RaySet::Coherent ? "coherent" : "incoherent"; }
+
+/// Traces `rays` (closest hit) through one structure; the render loop is compiled per structure.
+void trace(const tracer::Geometry& geometry, const accel::AnyAccel& a, const std::vector<Ray>& rays,
+           std::vector<Hit>& hits) {
+  hits.resize(rays.size());
+  tracer::with_intersector(geometry, a, false, [&](const auto& isect) {
+    for (std::size_t i = 0; i < rays.size(); ++i) hits[i] = isect.closest(rays[i]);
+  });
+}
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+/// CPU time of this thread, seconds: what the rates are based on, so that other processes on a
+/// shared machine do not count against a structure.
+double thread_cpu_seconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
+}
+
+/// One ray set of one scene with its naive reference, computed on first use.
+struct RayData {
+  std::vector<Ray> rays;
+  std::vector<Hit> reference;       ///< naive's hits, for validation.
+  std::vector<Ray> naive_sample;    ///< The rays naive is timed on.
+  double naive_s_per_ray = 0.0;     ///< naive's best time per ray on the sample.
+  std::size_t naive_stride = 1;
+};
+
+struct BenchScene {
+  tracer::Scene scene;
+  std::vector<accel::Aabb> boxes;
+  std::map<RaySet, std::unique_ptr<RayData>> sets;
+};
+
+std::vector<Ray> camera_rays(const tracer::Scene& scene) {
+  const tracer::PinholeCamera camera(scene.camera, kWidth, kHeight);
+  std::vector<Ray> rays;
+  rays.reserve(std::size_t(kWidth) * kHeight);
+  for (int y = 0; y < kHeight; ++y)
+    for (int x = 0; x < kWidth; ++x) rays.push_back(camera.primary_ray(x, y));
+  return rays;
+}
+
+/// Secondary rays off the camera hits: mirror reflections at even hits, uniformly random
+/// directions over the hemisphere at odd ones (diffuse and shadow-like). Seeded.
+std::vector<Ray> spawned_rays(const tracer::Geometry& g, const std::vector<Ray>& primary,
+                              const std::vector<Hit>& hits) {
+  std::mt19937 rng(2024);
+  std::normal_distribution<float> gauss(0.0f, 1.0f);
+  std::vector<Ray> out;
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < primary.size(); ++i) {
+    if (!hits[i].found() || hits[i].is_plane() || hits[i].prim >= g.spheres.size()) continue;
+    const Ray& r = primary[i];
+    const Vec3 p = r.org + hits[i].t * r.dir;
+    const Vec3 n = tracer::normal_at(g.spheres[hits[i].prim], p);
+    Vec3 d;
+    if (k++ % 2 == 0) {
+      d = r.dir - 2.0f * glm::dot(r.dir, n) * n;
+    } else {
+      d = glm::normalize(Vec3(gauss(rng), gauss(rng), gauss(rng)));
+      if (glm::dot(d, n) < 0.0f) d = -d;
+    }
+    Ray s;
+    s.org = tracer::offset_ray_origin(p, n);
+    s.dir = d;
+    out.push_back(s);
+  }
+  return out;
+}
+
+BenchScene& scene_named(const std::string& name) {
+  static std::map<std::string, std::unique_ptr<BenchScene>> cache;
+  auto& slot = cache[name];
+  if (!slot) {
+    slot = std::make_unique<BenchScene>();
+    slot->scene = scenes_gen::generate(name, scenes_gen::GenOptions{});
+    slot->boxes = slot->scene.geometry.primitive_bounds();
+  }
+  return *slot;
+}
+
+/// The reference and naive timing of a ray set, computed once per process.
+RayData& ray_data(const std::string& scene_name, RaySet set) {
+  BenchScene& bs = scene_named(scene_name);
+  auto& slot = bs.sets[set];
+  if (slot) return *slot;
+  auto d = std::make_unique<RayData>();
+  if (set == RaySet::Coherent) {
+    d->rays = camera_rays(bs.scene);
+  } else {
+    const RayData& primary = ray_data(scene_name, RaySet::Coherent);
+    d->rays = spawned_rays(bs.scene.geometry, primary.rays, primary.reference);
+  }
+  const accel::AnyAccel naive = accel::make_accel("naive", nullptr, bs.boxes);
+  const auto t0 = std::chrono::steady_clock::now();
+  std::fprintf(stderr, "bench_trace: naive reference for %s/%s (%zu rays)...\n", scene_name.c_str(),
+               ray_set_name(set), d->rays.size());
+  trace(bs.scene.geometry, naive, d->rays, d->reference);
+  std::fprintf(stderr, "bench_trace: done in %.1f s\n", seconds_since(t0));
+
+  d->naive_stride = bs.boxes.size() > 1000 ? kNaiveStride : 1;
+  for (std::size_t i = 0; i < d->rays.size(); i += d->naive_stride) d->naive_sample.push_back(d->rays[i]);
+  std::vector<Hit> scratch;
+  double best = 1e30;
+  for (int rep = 0; rep < 3; ++rep) {
+    const double t1 = thread_cpu_seconds();
+    trace(bs.scene.geometry, naive, d->naive_sample, scratch);
+    best = std::min(best, thread_cpu_seconds() - t1);
+  }
+  d->naive_s_per_ray = best / double(d->naive_sample.size());
+  slot = std::move(d);
+  return *slot;
+}
+
+/// Number of rays whose hit differs from the reference (primitive or bits of t).
+std::size_t mismatches(const std::vector<Hit>& got, const std::vector<Hit>& want) {
+  std::size_t bad = 0;
+  for (std::size_t i = 0; i < want.size(); ++i)
+    bad += got[i].prim != want[i].prim ||
+           std::bit_cast<std::uint32_t>(got[i].t) != std::bit_cast<std::uint32_t>(want[i].t);
+  return bad;
+}
+
+/// Builds a structure, or skips the benchmark with the factory's message.
+bool build_or_skip(benchmark::State& state, const std::string& name, const json& knobs,
+                   const BenchScene& bs, accel::AnyAccel& out) {
+  try {
+    out = accel::make_accel(name, knobs, bs.boxes);
+    return true;
+  } catch (const accel::ConfigError& e) {
+    state.SkipWithError(e.what());
+    return false;
+  }
+}
+
+/// Times closest-hit tracing of one ray set through one structure, after validating it.
+void bm_trace(benchmark::State& state, const std::string& scene_name, RaySet set,
+              const std::string& name, const json& knobs) {
+  BenchScene& bs = scene_named(scene_name);
+  RayData& d = ray_data(scene_name, set);
+  accel::AnyAccel a;
+  if (!build_or_skip(state, name, knobs, bs, a)) return;
+  const bool is_naive = name == "naive";
+  const std::vector<Ray>& rays = is_naive ? d.naive_sample : d.rays;
+
+  std::vector<Hit> hits;
+  if (!is_naive) {
+    trace(bs.scene.geometry, a, rays, hits);
+    if (const std::size_t bad = mismatches(hits, d.reference)) {
+      ++g_validation_failures;
+      state.SkipWithError(("validation failed: " + std::to_string(bad) + " of " +
+                           std::to_string(rays.size()) + " rays differ from naive")
+                              .c_str());
+      return;
+    }
+  }
+  const double cpu0 = thread_cpu_seconds();
+  for (auto _ : state) {
+    trace(bs.scene.geometry, a, rays, hits);
+    benchmark::DoNotOptimize(hits.data());
+    benchmark::ClobberMemory();
+  }
+  const double cpu = thread_cpu_seconds() - cpu0;
+  const double n = double(rays.size()) * double(state.iterations());
+  // A rate counter divides by the benchmark's CPU time (no UseRealTime): rays per CPU second.
+  state.counters["rays"] = benchmark::Counter(n, benchmark::Counter::kIsRate);
+  const std::string sample = "(naive_on_1/" + std::to_string(d.naive_stride) + "_of_rays)";
+  // naive's CPU time per ray over this structure's, each from its own timing.
+  state.counters["speedup_vs_naive" + sample] = cpu > 0.0 ? d.naive_s_per_ray * n / cpu : 0.0;
+  state.SetLabel(accel::name_of(a) + " " + accel::params_of(a).dump());
+}
+
+/// Times building one structure with (max_depth, max_leaf_size) from the benchmark arguments.
+void bm_build(benchmark::State& state, const std::string& scene_name, const std::string& name,
+              json knobs) {
+  const BenchScene& bs = scene_named(scene_name);
+  knobs["max_depth"] = state.range(0);
+  knobs["max_leaf_size"] = state.range(1);
+  accel::AnyAccel a;
+  if (!build_or_skip(state, name, knobs, bs, a)) return;
+  for (auto _ : state) {
+    a = accel::make_accel(name, knobs, bs.boxes);
+    benchmark::DoNotOptimize(&a);
+  }
+  const accel::BuildStats& s = accel::stats_of(a);
+  state.counters["nodes"] = double(s.nodes);
+  state.counters["sah_cost"] = s.sah_cost;
+  state.counters["duplication"] = s.duplication();
+  state.counters["memory_MiB"] = double(s.memory_bytes) / double(1 << 20);
+}
+
+/// Trace time over the tree knobs (max_depth, max_leaf_size) from the benchmark arguments.
+void bm_trace_knobs(benchmark::State& state, const std::string& name, json knobs) {
+  knobs["max_depth"] = state.range(0);
+  knobs["max_leaf_size"] = state.range(1);
+  bm_trace(state, "spheres8000", RaySet::Coherent, name, knobs);
+}
+
+/// A structure as the benchmarks name it: factory name plus knobs.
+struct Config {
+  std::string label;
+  std::string name;
+  json knobs;
+};
+
+std::vector<Config> trace_configs() {
+  std::vector<Config> out;
+  for (const std::string& name : accel::accel_names()) {
+    if (!accel::accel_built(name)) continue;
+    if (name == "kdtree") {
+      out.push_back({"kdtree_midpoint", name, {{"split", "midpoint"}}});
+      out.push_back({"kdtree_sah", name, {{"split", "sah"}}});
+    } else {
+      out.push_back({name, name, json::object()});
+    }
+  }
+  return out;
+}
+
+void register_benchmarks() {
+  for (const char* scene : {"spheres8000", "five"})
+    for (RaySet set : {RaySet::Coherent, RaySet::Incoherent})
+      for (const Config& c : trace_configs()) {
+        const std::string bm =
+            std::string("Trace/") + scene + "/" + ray_set_name(set) + "/" + c.label;
+        benchmark::RegisterBenchmark(bm.c_str(), bm_trace, std::string(scene), set, c.name, c.knobs)
+            ->Unit(benchmark::kMillisecond);
+      }
+  for (const Config& c : trace_configs()) {
+    if (c.name != "bvh" && c.name != "octree" && c.name != "kdtree") continue;
+    const std::string bm = "TraceKnobs/spheres8000/coherent/" + c.label;
+    benchmark::RegisterBenchmark(bm.c_str(), bm_trace_knobs, c.name, c.knobs)
+        ->ArgNames({"max_depth", "max_leaf_size"})
+        ->ArgsProduct({{8, 16, 64}, {1, 4, 16}})
+        ->Unit(benchmark::kMillisecond);
+  }
+  // Build time over the tree knobs; the BVH's target is <= 5 ms at (64, 4) for spheres8000.
+  for (const Config& c : trace_configs()) {
+    if (c.name != "bvh" && c.name != "octree" && c.name != "kdtree") continue;
+    const std::string bm = "Build/spheres8000/" + c.label;
+    benchmark::RegisterBenchmark(bm.c_str(), bm_build, std::string("spheres8000"), c.name, c.knobs)
+        ->ArgNames({"max_depth", "max_leaf_size"})
+        ->ArgsProduct({{8, 16, 20, 64}, {1, 2, 4, 8, 16}})
+        ->Unit(benchmark::kMillisecond);
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  register_benchmarks();
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  if (g_validation_failures > 0) {
+    std::fprintf(stderr, "bench_trace: %d structure(s) failed validation against naive\n",
+                 g_validation_failures);
+    return 1;
+  }
+  return 0;
+}

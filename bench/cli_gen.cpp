@@ -1,0 +1,78 @@
+// `accelbench gen`: write a procedurally generated scene as JSON.
+
+#include "cli_util.h"
+#include "commands.h"
+
+#include "scenes_gen/generators.h"
+#include "tracer/scene_io.h"
+
+#include <CLI/CLI.hpp>
+
+#include <cstdint>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+namespace bench {
+
+namespace {
+
+struct GenFlags {
+  std::string name;
+  std::string out;
+  std::string resolution;
+  std::uint64_t seed = 1;
+  int count = 0;
+  int samples_per_pixel = 1;
+  bool list = false;
+  CLI::Option* count_opt = nullptr;
+  CLI::Option* spp_opt = nullptr;
+};
+
+int run_gen(const GenFlags& f) {
+  if (f.list) {
+    for (const std::string& name : scenes_gen::generator_names())
+      std::printf("%-12s %s\n", name.c_str(), scenes_gen::generator_description(name).c_str());
+    return 0;
+  }
+  if (f.name.empty()) throw std::runtime_error("gen: give a generator NAME (see gen --list)");
+  if (f.out.empty()) throw std::runtime_error("gen: -o SCENE.json is required");
+  if (std::filesystem::path(f.out).extension() != ".json")
+    throw std::runtime_error("-o: expected a .json file name, got '" + f.out + "'");
+  scenes_gen::GenOptions options;
+  options.seed = f.seed;
+  if (f.count_opt->count()) options.count = f.count;
+  tracer::Scene scene = scenes_gen::generate(f.name, options);
+  if (!f.resolution.empty())
+    parse_resolution(f.resolution, "--resolution", scene.camera.width, scene.camera.height);
+  if (f.spp_opt->count()) scene.camera.samples_per_pixel = f.samples_per_pixel;
+  tracer::save_scene_file(scene, f.out);
+  std::printf("wrote %s: %s\n", f.out.c_str(), describe_scene(scene).c_str());
+  return 0;
+}
+
+}  // namespace
+
+void add_gen_command(CLI::App& app, int& exit_code) {
+  auto flags = std::make_shared<GenFlags>();
+  std::string names;
+  for (const std::string& n : scenes_gen::generator_names())
+    names += (names.empty() ? "" : ", ") + n;
+  CLI::App* cmd = app.add_subcommand("gen", "Generate a scene file; generators: " + names);
+  cmd->add_option("NAME", flags->name, "Generator name (see --list)");
+  cmd->add_option("-o,--output", flags->out, "Scene JSON to write");
+  cmd->add_option("--seed", flags->seed, "Random seed (same seed, same scene)");
+  flags->count_opt =
+      cmd->add_option("--count", flags->count, "Number of primitives, for generators that take one")
+          ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--resolution", flags->resolution, "Image size WIDTHxHEIGHT stored in the scene");
+  flags->spp_opt =
+      cmd->add_option("--spp", flags->samples_per_pixel, "Samples per pixel stored in the scene")
+          ->check(CLI::Range(1, 65536));
+  cmd->add_flag("--list", flags->list, "List the generators and exit");
+  cmd->callback([flags, &exit_code] { exit_code = run_gen(*flags); });
+}
+
+}  // namespace bench

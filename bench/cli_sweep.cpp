@@ -1,0 +1,152 @@
+// `accelbench sweep`: structures x knobs x scenes from a sweep file and flags, measured into a
+// JSON Lines file row by row and a results JSON at the end.
+
+#include "commands.h"
+#include "cli_util.h"
+#include "sweep_definition.h"
+#include "sweep_runner.h"
+
+#include <CLI/CLI.hpp>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#ifndef ACCELBENCH_SOURCE_DIR
+#define ACCELBENCH_SOURCE_DIR "."
+#endif
+
+namespace bench {
+namespace {
+
+struct SweepFlags {
+  std::string config;
+  std::vector<std::string> scenes, accel, placement, split;
+  std::vector<int> max_depth, leaf_size;
+  int repetitions = -1, warmup = -1, threads = -1;
+  std::string resolution, out, jsonl, shard_text = "0/1", max_memory;
+  bool resume = false, quiet = false;
+};
+
+std::vector<nlohmann::json> to_values(const std::vector<int>& v) { return {v.begin(), v.end()}; }
+std::vector<nlohmann::json> to_values(const std::vector<std::string>& v) { return {v.begin(), v.end()}; }
+
+/// A knob flag replaces that knob's values everywhere in the definition.
+void override_knob(SweepDefinition& d, const std::string& knob, const std::vector<nlohmann::json>& values) {
+  if (values.empty()) return;
+  for (auto& s : d.structures)
+    if (s.knobs.count(knob)) s.knobs[knob] = values;
+  d.knobs[knob] = values;
+}
+
+SweepDefinition definition_from_flags(const SweepFlags& f) {
+  const std::string path = f.config.empty() ? std::string(ACCELBENCH_SOURCE_DIR) + "/sweeps/paper.json" : f.config;
+  SweepDefinition d = load_sweep_file(path);
+  if (!f.scenes.empty()) {
+    d.scenes.clear();
+    for (const auto& item : f.scenes) {
+      try {
+        d.scenes.push_back(parse_scene_item(item));
+      } catch (const SweepError& e) {
+        throw SweepError(std::string("--scenes: ") + e.what());
+      }
+    }
+  }
+  if (!f.accel.empty()) {
+    // Keep the file's entries for the listed structures (with their knobs); add the others.
+    std::vector<StructureSpec> kept;
+    for (const auto& name : f.accel) {
+      bool found = false;
+      for (const auto& s : d.structures)
+        if (s.name == name) {
+          kept.push_back(s);
+          found = true;
+        }
+      if (!found) kept.push_back(StructureSpec{name, {}});
+    }
+    d.structures = kept;
+  }
+  override_knob(d, "max_depth", to_values(f.max_depth));
+  override_knob(d, "max_leaf_size", to_values(f.leaf_size));
+  override_knob(d, "placement", to_values(f.placement));
+  override_knob(d, "split", to_values(f.split));
+  if (f.repetitions >= 0) d.repetitions = f.repetitions;
+  if (f.warmup >= 0) d.warmup = f.warmup;
+  if (f.threads >= 0) d.threads = f.threads;
+  if (!f.max_memory.empty()) d.max_memory_bytes = parse_bytes(f.max_memory, "--max-memory");
+  if (!f.resolution.empty()) std::tie(d.width, d.height) = parse_resolution(f.resolution, "--resolution");
+  // Re-validate the edited definition so flags get the same checks as the file; knobs no swept
+  // structure has are dropped from the sweep-wide set rather than rejected.
+  std::vector<std::string> known;
+  for (const auto& s : d.structures)
+    if (const auto k = structure_knobs(s.name)) known.insert(known.end(), k->begin(), k->end());
+  for (auto it = d.knobs.begin(); it != d.knobs.end();)
+    it = std::find(known.begin(), known.end(), it->first) == known.end() ? d.knobs.erase(it) : std::next(it);
+  try {
+    return parse_sweep_definition(to_json(d));
+  } catch (const SweepError& e) {
+    throw SweepError(std::string("flags: ") + e.what());
+  }
+}
+
+int run(const SweepFlags& f) {
+  const SweepDefinition d = definition_from_flags(f);
+  RunOptions o;
+  std::tie(o.shard_index, o.shard_count) = parse_shard(f.shard_text);
+  o.out_path = f.out.empty() ? "results/" + d.name + ".json" : f.out;
+  if (o.shard_count > 1 && f.out.empty())
+    o.out_path = "results/" + d.name + ".shard" + std::to_string(o.shard_index) + "of" +
+                 std::to_string(o.shard_count) + ".json";
+  o.jsonl_path = f.jsonl.empty() ? std::filesystem::path(o.out_path).replace_extension(".jsonl").string() : f.jsonl;
+  o.resume = f.resume;
+  o.progress = !f.quiet;
+  if (!f.quiet)
+    std::fprintf(stderr, "sweep: %s: %zu scene(s), %zu structure entr%s, shard %d/%d -> %s (rows: %s)\n",
+                 d.name.c_str(), d.scenes.size(), d.structures.size(), d.structures.size() == 1 ? "y" : "ies",
+                 o.shard_index, o.shard_count, o.out_path.c_str(), o.jsonl_path.c_str());
+  const RunSummary s = run_sweep(d, o);
+  std::fprintf(stderr,
+               "sweep: %s %s: %zu of %zu configurations (%zu measured now, %zu failed or in error); "
+               "wall %.1f s, build %.1f s, trace %.1f s, harness overhead %.2f%%\n",
+               s.interrupted ? "interrupted, wrote" : "wrote", o.out_path.c_str(), s.already_done + s.measured,
+               s.shard_configs, s.measured, s.not_ok, s.wall_s, s.build_s, s.trace_s, 100.0 * s.harness_fraction());
+  if (s.interrupted) {
+    std::fprintf(stderr, "sweep: continue with the same flags and --resume\n");
+    return 130;
+  }
+  return 0;
+}
+
+}  // namespace
+
+void add_sweep_command(CLI::App& app, int& exit_code) {
+  auto flags = std::make_shared<SweepFlags>();
+  CLI::App* cmd = app.add_subcommand(
+      "sweep", "Measure structures x max_depth x max_leaf_size (x placement x split) x scenes");
+  cmd->add_option("--config", flags->config, "Sweep definition JSON (default: sweeps/paper.json)")
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--scenes", flags->scenes, "Scenes: generator, generator:count, or scene file (.json, .nff)")
+      ->delimiter(',');
+  cmd->add_option("--accel", flags->accel, "Structures to sweep, e.g. naive,octree,kdtree")->delimiter(',');
+  cmd->add_option("--max-depth", flags->max_depth, "max_depth values, e.g. 4,8,12")->delimiter(',');
+  cmd->add_option("--leaf-size", flags->leaf_size, "max_leaf_size values, e.g. 1,2,4,8")->delimiter(',');
+  cmd->add_option("--placement", flags->placement, "placement values: leaves,every_level")->delimiter(',');
+  cmd->add_option("--split", flags->split, "kd-tree split values: midpoint,sah")->delimiter(',');
+  cmd->add_option("--repetitions", flags->repetitions, "Timed renders per configuration (median reported)")
+      ->check(CLI::Range(1, 10000));
+  cmd->add_option("--warmup", flags->warmup, "Untimed renders before the timed ones")->check(CLI::Range(0, 10000));
+  cmd->add_option("--threads", flags->threads, "Render threads (0 = all cores)")->check(CLI::Range(0, 4096));
+  cmd->add_option("--resolution", flags->resolution, "Image size WIDTHxHEIGHT (default: the sweep file's)");
+  cmd->add_option("--max-memory", flags->max_memory, "Build memory budget, e.g. 512M or 2G (0 = 25% of RAM)");
+  cmd->add_option("--out", flags->out, "Results JSON (default results/<sweep name>.json)");
+  cmd->add_option("--jsonl", flags->jsonl, "Row-by-row JSON Lines file (default: --out with .jsonl)");
+  cmd->add_flag("--resume", flags->resume, "Keep the JSON Lines file's rows and skip those configurations");
+  cmd->add_option("--shard", flags->shard_text, "Run shard I of N (0-based), e.g. 0/4");
+  cmd->add_flag("--quiet", flags->quiet, "No progress lines");
+  cmd->callback([flags, &exit_code] { exit_code = run(*flags); });
+}
+
+}  // namespace bench

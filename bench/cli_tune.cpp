@@ -1,0 +1,121 @@
+// `accelbench tune`: the best max_depth x max_leaf_size of a structure on one scene, and how
+// flat the optimum is.
+
+#include "commands.h"
+#include "cli_util.h"
+#include "sweep_definition.h"
+#include "sweep_results.h"
+#include "sweep_scene.h"
+#include "tune.h"
+
+#include <CLI/CLI.hpp>
+
+#include <algorithm>
+#include <cstdio>
+#include <memory>
+#include <string>
+
+namespace bench {
+namespace {
+
+struct TuneFlags {
+  std::string scene, accel = "kdtree", resolution = "320x240", placement, split, json_out, max_memory = "0";
+  int threads = 1, repetitions = 3, warmup = 1;
+  std::uint64_t seed = 1;
+};
+
+/// "max_depth=9 max_leaf_size=6": the tuned knobs of a point.
+std::string knobs_text(const TunePoint& p) {
+  return (p.max_depth >= 0 ? "max_depth=" + std::to_string(p.max_depth) + " " : std::string()) +
+         "max_leaf_size=" + std::to_string(p.max_leaf_size);
+}
+
+std::string range_text(int lo, int hi) {
+  return lo == hi ? std::to_string(lo) : std::to_string(lo) + "-" + std::to_string(hi);
+}
+
+int run(const TuneFlags& f) {
+  SceneSpec spec;
+  try {
+    spec = parse_scene_item(f.scene);
+  } catch (const SweepError& e) {
+    throw SweepError(std::string("SCENE: ") + e.what());
+  }
+  spec.seed = f.seed;
+  const tracer::Scene scene = load_sweep_scene(spec);
+
+  TuneOptions o;
+  std::tie(o.measure.width, o.measure.height) = parse_resolution(f.resolution, "--resolution");
+  o.measure.threads = f.threads;
+  o.measure.repetitions = f.repetitions;
+  o.measure.warmup = f.warmup;
+  o.measure.limits.max_memory_bytes = parse_bytes(f.max_memory, "--max-memory");
+  if (!f.placement.empty()) o.fixed["placement"] = f.placement;
+  if (!f.split.empty()) o.fixed["split"] = f.split;
+
+  std::printf("tune: %s on %s (%u primitives), %dx%d, %d thread(s), median of %d\n", f.accel.c_str(),
+              spec.name.c_str(), scene.geometry.bounded_count(), o.measure.width, o.measure.height, f.threads,
+              f.repetitions);
+  const TuneResult r = tune(scene, f.accel, o);
+  const TunePoint& best = r.points[r.best];
+  std::size_t coarse = 0;
+  for (const auto& p : r.points) coarse += p.round == 0;
+  std::printf("evaluated %zu points (%zu coarse, %zu refined); naive %.3f ms\n", r.points.size(), coarse,
+              r.points.size() - coarse, r.naive.render_ms);
+  std::printf("best: %s: %.3f ms, %.1fx naive\n", knobs_text(best).c_str(), best.m.render_ms->median,
+              r.best_speedup());
+  std::printf("      every knob: %s\n", best.m.params.dump().c_str());
+  int dlo = 1 << 30, dhi = -1, llo = 1 << 30, lhi = -1;
+  for (std::size_t i : r.flat) {
+    const auto& p = r.points[i];
+    dlo = std::min(dlo, p.max_depth), dhi = std::max(dhi, p.max_depth);
+    llo = std::min(llo, p.max_leaf_size), lhi = std::max(lhi, p.max_leaf_size);
+  }
+  std::printf("within %.0f%% of the best: %zu of %zu valid points", 100.0 * o.flat_tolerance, r.flat.size(),
+              std::size_t(std::count_if(r.points.begin(), r.points.end(),
+                                        [](const TunePoint& p) { return p.m.status == RowStatus::Ok; })));
+  if (best.max_depth >= 0) std::printf(", max_depth %s", range_text(dlo, dhi).c_str());
+  std::printf(", max_leaf_size %s\n", range_text(llo, lhi).c_str());
+  for (std::size_t i : r.flat) {
+    const auto& p = r.points[i];
+    const double ms = p.m.render_ms->median;
+    std::printf("  %-30s %9.3f ms  %+5.1f%%  %6.1fx naive\n", knobs_text(p).c_str(), ms,
+                100.0 * (ms / best.m.render_ms->median - 1.0), r.naive.render_ms / ms);
+  }
+  if (!f.json_out.empty()) {
+    nlohmann::json j = to_json(r);
+    j["scene"] = to_json(spec);
+    write_json_atomic(f.json_out, j);
+    std::printf("wrote %s\n", f.json_out.c_str());
+  }
+  return 0;
+}
+
+}  // namespace
+
+void add_tune_command(CLI::App& app, int& exit_code) {
+  auto flags = std::make_shared<TuneFlags>();
+  CLI::App* cmd = app.add_subcommand(
+      "tune", "Find a structure's best max_depth x max_leaf_size on a scene (coarse grid, then refinement)");
+  cmd->add_option("scene", flags->scene, "Generator name, generator:count, or scene file (.json, .nff)")
+      ->required();
+  cmd->add_option("--accel", flags->accel, "Structure to tune")->capture_default_str();
+  cmd->add_option("--threads", flags->threads, "Render threads (0 = all cores)")
+      ->check(CLI::Range(0, 4096))
+      ->capture_default_str();
+  cmd->add_option("--resolution", flags->resolution, "Image size WIDTHxHEIGHT")->capture_default_str();
+  cmd->add_option("--repetitions", flags->repetitions, "Timed renders per point (median used)")
+      ->check(CLI::Range(1, 1000))
+      ->capture_default_str();
+  cmd->add_option("--warmup", flags->warmup, "Untimed renders before them")
+      ->check(CLI::Range(0, 1000))
+      ->capture_default_str();
+  cmd->add_option("--placement", flags->placement, "Hold placement fixed: leaves or every_level");
+  cmd->add_option("--split", flags->split, "Hold the kd-tree split rule fixed: midpoint or sah");
+  cmd->add_option("--max-memory", flags->max_memory, "Build memory budget, e.g. 512M or 2G (0 = 25% of RAM)");
+  cmd->add_option("--seed", flags->seed, "Generator seed")->capture_default_str();
+  cmd->add_option("--json", flags->json_out, "Also write every point as JSON to this file");
+  cmd->callback([flags, &exit_code] { exit_code = run(*flags); });
+}
+
+}  // namespace bench

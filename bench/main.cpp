@@ -1,0 +1,50 @@
+// accelbench: ray-tracing acceleration structures, built, rendered through and measured.
+
+#include "commands.h"
+
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <exception>
+#include <iostream>
+#include <string>
+
+namespace {
+
+/// The message on one line, whatever the exception put in it.
+std::string one_line(std::string s) {
+  for (char& c : s)
+    if (c == '\n' || c == '\r') c = ' ';
+  return s;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"Benchmark harness for ray-tracing acceleration structures.", "accelbench"};
+  app.require_subcommand(1);
+  app.failure_message(CLI::FailureMessage::simple);
+  int exit_code = 0;
+  bench::add_render_command(app, exit_code);
+  bench::add_gen_command(app, exit_code);
+  bench::add_sweep_command(app, exit_code);
+  bench::add_tune_command(app, exit_code);
+  bench::add_merge_command(app, exit_code);
+  bench::add_convert_command(app, exit_code);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help
+    std::fflush(stdout);  // what the command printed before failing comes first
+    std::cerr << "accelbench: " << one_line(e.what()) << " (see --help)\n";
+    return e.get_exit_code();
+  } catch (const std::exception& e) {
+    std::fflush(stdout);
+    std::cerr << "accelbench: " << one_line(e.what()) << '\n';
+    return 1;
+  } catch (...) {
+    std::cerr << "accelbench: unexpected error\n";
+    return 1;
+  }
+  return exit_code;
+}

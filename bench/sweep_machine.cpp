@@ -1,0 +1,97 @@
+#include "sweep_machine.h"
+
+#include <sys/utsname.h>
+#include <unistd.h>
+
+#include <array>
+#include <chrono>
+#include <cstdio>
+#include <ctime>
+#include <fstream>
+#include <memory>
+#include <thread>
+
+// Set by bench/CMakeLists.txt; the fallbacks keep the file compilable on its own.
+#ifndef ACCELBENCH_GIT_COMMIT
+#define ACCELBENCH_GIT_COMMIT "unknown"
+#endif
+#ifndef ACCELBENCH_BUILD_TYPE
+#define ACCELBENCH_BUILD_TYPE "unknown"
+#endif
+#ifndef ACCELBENCH_CXX_FLAGS
+#define ACCELBENCH_CXX_FLAGS "unknown"
+#endif
+#ifndef ACCELBENCH_SOURCE_DIR
+#define ACCELBENCH_SOURCE_DIR "."
+#endif
+
+namespace bench {
+namespace {
+
+std::string cpu_model() {
+  std::ifstream in("/proc/cpuinfo");
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.rfind("model name", 0) == 0) {
+      const auto colon = line.find(':');
+      if (colon != std::string::npos) {
+        auto start = line.find_first_not_of(' ', colon + 1);
+        return start == std::string::npos ? std::string() : line.substr(start);
+      }
+    }
+  }
+  return "unknown";
+}
+
+std::string compiler() {
+#if defined(__clang__)
+  return std::string("clang ") + __clang_version__;
+#elif defined(__GNUC__)
+  return std::string("gcc ") + __VERSION__;
+#else
+  return "unknown";
+#endif
+}
+
+/// `git rev-parse HEAD` in the source tree when git and the tree are there, else "".
+std::string runtime_git_commit() {
+  const std::string cmd = "git -C '" ACCELBENCH_SOURCE_DIR "' rev-parse HEAD 2>/dev/null";
+  std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen(cmd.c_str(), "r"), pclose);
+  if (!pipe) return "";
+  std::array<char, 128> buf{};
+  std::string out;
+  while (fgets(buf.data(), int(buf.size()), pipe.get())) out += buf.data();
+  while (!out.empty() && (out.back() == '\n' || out.back() == '\r')) out.pop_back();
+  return out.size() == 40 ? out : "";
+}
+
+}  // namespace
+
+std::string utc_now_iso8601() {
+  const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  std::tm tm{};
+  gmtime_r(&now, &tm);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return buf;
+}
+
+nlohmann::json machine_info() {
+  utsname u{};
+  uname(&u);
+  const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGE_SIZE);
+  const std::string built = ACCELBENCH_GIT_COMMIT, now = runtime_git_commit();
+  return {{"cpu_model", cpu_model()},
+          {"cores", std::thread::hardware_concurrency()},
+          {"memory_bytes", pages > 0 && page > 0 ? std::uint64_t(pages) * std::uint64_t(page) : 0},
+          {"os", std::string(u.sysname) + " " + u.release + " " + u.machine},
+          {"hostname", std::string(u.nodename)},
+          {"compiler", compiler()},
+          {"flags", ACCELBENCH_CXX_FLAGS},
+          {"build_type", ACCELBENCH_BUILD_TYPE},
+          {"git_commit", now.empty() ? built : now},
+          {"git_commit_at_build", built},
+          {"date", utc_now_iso8601()}};
+}
+
+}  // namespace bench

@@ -1,0 +1,113 @@
+#include "sweep_measure.h"
+
+#include "tracer/image.h"
+#include "tracer/render.h"
+
+#include <chrono>
+#include <new>
+
+namespace bench {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+}  // namespace
+
+const char* status_name(RowStatus s) {
+  switch (s) {
+    case RowStatus::Ok: return "ok";
+    case RowStatus::Failed: return "failed";
+    case RowStatus::Error: return "error";
+  }
+  return "error";
+}
+
+double Measurement::rays_per_s() const {
+  if (!render_ms || render_ms->median <= 0.0) return 0.0;
+  return double(rays.total()) / (render_ms->median * 1e-3);
+}
+
+Measurement measure(const tracer::Scene& scene, std::span<const accel::Aabb> boxes,
+                    const std::string& structure, const nlohmann::json& params,
+                    const MeasureOptions& options, const std::optional<Reference>& reference) {
+  Measurement m;
+  accel::AnyAccel built;
+  const auto t_build = Clock::now();
+  try {
+    built = accel::make_accel(structure, params, boxes, options.limits);
+  } catch (const std::bad_alloc&) {
+    m.spent_build_s = seconds_since(t_build);
+    m.status = RowStatus::Failed;
+    m.reason = structure + ": out of memory while building";
+    return m;
+  } catch (const std::exception& e) {
+    m.spent_build_s = seconds_since(t_build);
+    m.status = RowStatus::Failed;
+    m.reason = e.what();
+    return m;
+  }
+  m.spent_build_s = seconds_since(t_build);
+  m.build_ms = m.spent_build_s * 1e3;
+  m.built = true;
+  m.params = accel::params_of(built);
+  m.built_name = accel::name_of(built);
+  m.build_stats = accel::stats_of(built);
+
+  tracer::RenderOptions ro;
+  ro.threads = options.threads;
+  ro.width = options.width;
+  ro.height = options.height;
+
+  // One timed call of the renderer; the hash of every image must agree with the first.
+  auto render_once = [&](bool counting) -> std::optional<double> {
+    ro.count_traversal = counting;
+    const auto t0 = Clock::now();
+    tracer::RenderResult r = tracer::render(scene, built, ro);
+    const double s = seconds_since(t0);
+    m.spent_trace_s += s;
+    const std::uint64_t h = r.image.content_hash();
+    if (counting) {
+      m.image_hash = h;
+      m.traversal = r.traversal;
+      m.rays = r.rays;
+    } else if (h != m.image_hash) {
+      m.status = RowStatus::Error;
+      m.reason = "image hash " + tracer::hash_hex(h) + " of a timed render differs from its counting pass's " +
+                 tracer::hash_hex(m.image_hash) + " (nondeterministic render)";
+      return std::nullopt;
+    }
+    return s * 1e3;
+  };
+
+  try {
+    render_once(true);
+    if (reference && m.image_hash != reference->image_hash) {
+      m.status = RowStatus::Error;
+      m.reason = "image hash " + tracer::hash_hex(m.image_hash) + " differs from naive's " +
+                 tracer::hash_hex(reference->image_hash);
+      return m;
+    }
+    for (int i = 0; i < options.warmup; ++i)
+      if (!render_once(false)) return m;
+    std::vector<double> samples;
+    for (int i = 0; i < options.repetitions; ++i) {
+      const auto ms = render_once(false);
+      if (!ms) return m;
+      samples.push_back(*ms);
+    }
+    m.render_ms = summarize(samples);
+  } catch (const std::bad_alloc&) {
+    m.status = RowStatus::Failed;
+    m.reason = structure + ": out of memory while rendering";
+  } catch (const std::exception& e) {
+    m.status = RowStatus::Failed;
+    m.reason = std::string("render: ") + e.what();
+  }
+  return m;
+}
+
+}  // namespace bench

@@ -1,0 +1,73 @@
+#pragma once
+// Measures one structure with one set of knobs on one scene: a timed build, an untimed counting
+// pass that also yields the image hash, then warm-ups and timed renders.
+
+#include "sweep_stats.h"
+
+#include "accel/accel.h"
+#include "tracer/ray_counts.h"
+#include "tracer/scene.h"
+
+#include <nlohmann/json.hpp>
+
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
+
+namespace bench {
+
+/// Outcome of a configuration.
+enum class RowStatus {
+  Ok,      ///< Built, validated against naive, timed.
+  Failed,  ///< Could not be built or rendered (memory budget, invalid knob, ...).
+  Error,   ///< Built and rendered, but its image differs from naive's: never timed.
+};
+
+/// "ok", "failed" or "error".
+const char* status_name(RowStatus s);
+
+/// How to render and time a configuration.
+struct MeasureOptions {
+  int width = 0;                 ///< Image width, pixels; 0 = the scene's.
+  int height = 0;                ///< Image height, pixels; 0 = the scene's.
+  int threads = 1;               ///< Render threads; 0 = all cores.
+  int repetitions = 5;           ///< Timed renders.
+  int warmup = 1;                ///< Untimed renders before them.
+  accel::BuildLimits limits;     ///< Build memory budget.
+};
+
+/// The naive structure's image hash and median render time on the same scene, same run.
+struct Reference {
+  std::uint64_t image_hash = 0;   ///< Naive's image hash.
+  double render_ms = 0.0;         ///< Naive's median render time, ms.
+};
+
+/// Everything measured for one configuration.
+struct Measurement {
+  RowStatus status = RowStatus::Ok;     ///< Outcome.
+  std::string reason;                    ///< Why it is not ok (one line).
+  bool built = false;                    ///< The structure was built.
+  double build_ms = 0.0;                 ///< Build wall time (steady_clock around make_accel), ms.
+  nlohmann::json params;                 ///< params_of: the exact knobs used (when built).
+  std::string built_name;                ///< name_of: the structure actually built (auto picks one).
+  accel::BuildStats build_stats;         ///< The structure's statistics (when built).
+  std::optional<TimingStats> render_ms;  ///< Timed renders, ms (only when ok).
+  accel::TraversalCounters traversal;    ///< From the counting pass (not timed).
+  tracer::RayCounts rays;                ///< Rays traced by one render.
+  std::uint64_t image_hash = 0;          ///< Image hash of the counting pass and every render.
+  double spent_build_s = 0.0;            ///< Wall time inside make_accel, s (overhead accounting).
+  double spent_trace_s = 0.0;            ///< Wall time inside every render call, s (overhead accounting).
+
+  /// Rays per second at the median render time, shadow rays included (0 when not timed).
+  double rays_per_s() const;
+};
+
+/// Builds and measures `structure` with `params` on `scene`. Never throws for a bad knob or a
+/// failed build: those become a Failed measurement. With a reference, an image that differs
+/// from naive's is an Error and is not timed.
+Measurement measure(const tracer::Scene& scene, std::span<const accel::Aabb> boxes,
+                    const std::string& structure, const nlohmann::json& params,
+                    const MeasureOptions& options, const std::optional<Reference>& reference);
+
+}  // namespace bench

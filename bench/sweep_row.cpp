@@ -1,0 +1,63 @@
+#include "sweep_row.h"
+
+#include "tracer/image.h"
+
+namespace bench {
+namespace {
+
+nlohmann::json row_head(const SweepConfig& config, const SceneSpec& scene, const MeasureOptions& options) {
+  return {{"index", config.index},
+          {"key", config.key},
+          {"scene", scene.name},
+          {"scene_family", scene.family()},
+          {"structure", config.structure},
+          {"requested", config.params},
+          {"width", options.width},
+          {"height", options.height},
+          {"threads", options.threads},
+          {"repetitions", options.repetitions},
+          {"warmup", options.warmup}};
+}
+
+}  // namespace
+
+nlohmann::json make_row(const SweepConfig& config, const SceneSpec& scene, std::uint64_t primitives,
+                        const MeasureOptions& options, const Measurement& m,
+                        const std::optional<Reference>& reference) {
+  nlohmann::json row = row_head(config, scene, options);
+  row["primitives"] = primitives;
+  row["status"] = status_name(m.status);
+  if (m.status != RowStatus::Ok) row["reason"] = m.reason;
+  if (m.built) {
+    row["built"] = m.built_name;
+    row["params"] = m.params;
+    row["build_ms"] = m.build_ms;
+    row["build_stats"] = m.build_stats;
+  }
+  if (m.image_hash != 0 || m.rays.total() != 0) {
+    row["image_hash"] = tracer::hash_hex(m.image_hash);
+    row["traversal"] = m.traversal;
+    row["rays"] = m.rays;
+  }
+  if (reference) {
+    row["naive_image_hash"] = tracer::hash_hex(reference->image_hash);
+    row["naive_render_ms"] = reference->render_ms;
+  }
+  // Only a validated configuration carries speeds.
+  if (m.status == RowStatus::Ok && m.render_ms) {
+    row["render_ms"] = *m.render_ms;
+    row["rays_per_s"] = m.rays_per_s();
+    if (reference && m.render_ms->median > 0.0) row["speedup"] = reference->render_ms / m.render_ms->median;
+  }
+  return row;
+}
+
+nlohmann::json make_failed_row(const SweepConfig& config, const SceneSpec& scene,
+                               const MeasureOptions& options, const std::string& reason) {
+  nlohmann::json row = row_head(config, scene, options);
+  row["status"] = status_name(RowStatus::Failed);
+  row["reason"] = reason;
+  return row;
+}
+
+}  // namespace bench

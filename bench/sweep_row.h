@@ -1,0 +1,25 @@
+#pragma once
+// One results row: a configuration with what was measured, as the results schema describes it.
+
+#include "sweep_definition.h"
+#include "sweep_measure.h"
+
+#include <nlohmann/json.hpp>
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+namespace bench {
+
+/// The row of a measured configuration. Speedup and naive's figures come from `reference`
+/// (naive on the same scene in the same run); they are absent when it is.
+nlohmann::json make_row(const SweepConfig& config, const SceneSpec& scene, std::uint64_t primitives,
+                        const MeasureOptions& options, const Measurement& m,
+                        const std::optional<Reference>& reference);
+
+/// The row of a configuration that could not be measured at all (its scene failed to load).
+nlohmann::json make_failed_row(const SweepConfig& config, const SceneSpec& scene,
+                               const MeasureOptions& options, const std::string& reason);
+
+}  // namespace bench

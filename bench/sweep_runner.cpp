@@ -1,0 +1,226 @@
+#include "sweep_runner.h"
+
+#include "sweep_interrupt.h"
+#include "sweep_jsonl.h"
+#include "sweep_machine.h"
+#include "sweep_measure.h"
+#include "sweep_results.h"
+#include "sweep_row.h"
+#include "sweep_scene.h"
+
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <map>
+#include <optional>
+#include <set>
+
+namespace bench {
+namespace {
+
+using nlohmann::json;
+using Clock = std::chrono::steady_clock;
+
+std::string clock_text(double seconds) {
+  const long s = long(seconds + 0.5);
+  char buf[32];
+  if (s >= 3600) std::snprintf(buf, sizeof buf, "%ld:%02ld:%02ld", s / 3600, s / 60 % 60, s % 60);
+  else std::snprintf(buf, sizeof buf, "%ld:%02ld", s / 60, s % 60);
+  return buf;
+}
+
+/// Naive's figures recorded in an earlier row (resume), when that row is usable as a reference.
+std::optional<Reference> reference_from_row(const json& row) {
+  if (row.value("status", "") != "ok" || !row.contains("render_ms") || !row.contains("image_hash"))
+    return std::nullopt;
+  Reference r;
+  r.image_hash = std::stoull(row["image_hash"].get<std::string>(), nullptr, 16);
+  r.render_ms = row["render_ms"]["median"].get<double>();
+  return r;
+}
+
+/// The test hook: ACCELBENCH_SWEEP_KILL_AFTER_ROWS=N sends this process a signal after N rows,
+/// SIGKILL or, with ACCELBENCH_SWEEP_KILL_SIGNAL=TERM, SIGTERM.
+std::size_t kill_after_rows() {
+  const char* v = std::getenv("ACCELBENCH_SWEEP_KILL_AFTER_ROWS");
+  return v ? std::size_t(std::strtoull(v, nullptr, 10)) : 0;
+}
+int kill_signal() {
+  const char* v = std::getenv("ACCELBENCH_SWEEP_KILL_SIGNAL");
+  return v && std::string(v) == "TERM" ? SIGTERM : SIGKILL;
+}
+
+/// Reads the JSON Lines file of an earlier run for --resume, checking it belongs to this sweep.
+std::vector<json> resume_records(const std::string& path, const json& definition, const json& shard_json) {
+  JsonlContents contents = read_jsonl(path);
+  if (contents.records.empty()) return {};
+  const json& header = contents.records.front();
+  if (header.value("kind", "") != kHeaderKind)
+    throw SweepError(path + ": first line is not a sweep header; cannot --resume from it");
+  if (header.value("sweep", json()) != definition)
+    throw SweepError(path + ": written by a different sweep definition; cannot --resume it (pick another --jsonl)");
+  if (header.value("shard", json()) != shard_json)
+    throw SweepError(path + ": written for shard " + header.value("shard", json()).dump() +
+                     ", not " + shard_json.dump() + "; cannot --resume it");
+  if (contents.skipped_lines) {
+    std::fprintf(stderr, "sweep: %s: dropping %zu torn or unreadable line(s)\n", path.c_str(),
+                 contents.skipped_lines);
+    truncate_file(path, contents.valid_bytes);
+  }
+  return std::move(contents.records);
+}
+
+}  // namespace
+
+RunSummary run_sweep(const SweepDefinition& definition, const RunOptions& options) {
+  const auto t_start = Clock::now();
+  RunSummary summary;
+  const std::vector<SweepConfig> mine = shard(expand(definition), options.shard_index, options.shard_count);
+  summary.shard_configs = mine.size();
+  const json definition_json = to_json(definition);
+  const json shard_json = {{"index", options.shard_index}, {"count", options.shard_count}};
+
+  // Records of earlier runs (--resume): their rows are done.
+  std::vector<json> records;
+  if (options.resume) records = resume_records(options.jsonl_path, definition_json, shard_json);
+  const bool fresh = records.empty();
+  JsonlWriter writer(options.jsonl_path, fresh);
+  json machine;
+  if (fresh) {
+    machine = machine_info();
+    json header = {{"kind", kHeaderKind}, {"format", "accelbench-sweep-jsonl"}, {"version", kResultsVersion},
+                   {"sweep", definition_json}, {"shard", shard_json}, {"machine", machine}};
+    writer.append(header);
+  } else {
+    machine = records.front()["machine"];
+  }
+  std::map<std::string, json> done;
+  for (const auto& r : records)
+    if (r.value("kind", "") == kRowKind) done.emplace(r.value("key", ""), r);
+
+  std::vector<SweepConfig> pending;
+  for (const auto& c : mine)
+    if (!done.count(c.key)) pending.push_back(c);
+  summary.already_done = mine.size() - pending.size();
+  if (options.progress && summary.already_done)
+    std::fprintf(stderr, "sweep: resuming: %zu of %zu configurations already done\n", summary.already_done,
+                 mine.size());
+
+  MeasureOptions mo;
+  mo.width = definition.width;
+  mo.height = definition.height;
+  mo.threads = definition.threads;
+  mo.repetitions = definition.repetitions;
+  mo.warmup = definition.warmup;
+  mo.limits.max_memory_bytes = definition.max_memory_bytes;
+
+  install_stop_handlers();
+  const std::size_t kill_after = kill_after_rows();
+  const std::size_t total = pending.size();
+
+  auto emit = [&](json row, const SweepConfig& c, const std::string& what) {
+    row["kind"] = kRowKind;
+    writer.append(row);
+    summary.measured++;
+    if (row.value("status", "") != "ok") summary.not_ok++;
+    if (options.progress) {
+      const double elapsed = std::chrono::duration<double>(Clock::now() - t_start).count();
+      const double left = elapsed / double(summary.measured) * double(total - summary.measured);
+      std::fprintf(stderr, "sweep: [%zu/%zu] %s %s %s: %s | %s elapsed, ~%s left\n", summary.measured, total,
+                   definition.scenes[c.scene].name.c_str(), c.structure.c_str(), c.params.dump().c_str(),
+                   what.c_str(), clock_text(elapsed).c_str(), clock_text(left).c_str());
+    }
+    if (kill_after && summary.measured == kill_after) std::raise(kill_signal());
+  };
+  auto describe = [](const Measurement& m) {
+    if (m.status != RowStatus::Ok) return std::string(status_name(m.status)) + ": " + m.reason;
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "ok, render %.2f ms, build %.2f ms", m.render_ms->median, m.build_ms);
+    return std::string(buf);
+  };
+
+  // pending is in index order, which is scene-major: measure one scene at a time.
+  for (std::size_t begin = 0; begin < pending.size() && !stop_requested();) {
+    std::size_t end = begin;
+    while (end < pending.size() && pending[end].scene == pending[begin].scene) ++end;
+    const SceneSpec& spec = definition.scenes[pending[begin].scene];
+
+    std::optional<tracer::Scene> scene;
+    std::string scene_error;
+    try {
+      scene = load_sweep_scene(spec);
+    } catch (const std::exception& e) {
+      scene_error = "scene " + spec.name + ": " + e.what();
+    }
+    if (!scene) {
+      for (std::size_t i = begin; i < end && !stop_requested(); ++i)
+        emit(make_failed_row(pending[i], spec, mo, scene_error), pending[i], "failed: " + scene_error);
+      begin = end;
+      continue;
+    }
+    const std::vector<accel::Aabb> boxes = scene->geometry.primitive_bounds();
+    const std::uint64_t primitives = boxes.size();
+
+    // The reference: naive on this scene, from an earlier row, this shard's naive row, or a
+    // measurement made only for validation and speedups.
+    const std::string naive_key = config_key(spec.name, "naive", json::object());
+    std::optional<Reference> reference;
+    std::string no_reference;
+    if (const auto it = done.find(naive_key); it != done.end()) reference = reference_from_row(it->second);
+    if (!reference) {
+      if (options.progress) std::fprintf(stderr, "sweep: %s: measuring naive, the reference\n", spec.name.c_str());
+      const Measurement naive = measure(*scene, boxes, "naive", json::object(), mo, std::nullopt);
+      summary.build_s += naive.spent_build_s;
+      summary.trace_s += naive.spent_trace_s;
+      if (naive.status == RowStatus::Ok) reference = Reference{naive.image_hash, naive.render_ms->median};
+      else no_reference = "no naive reference on this scene: " + naive.reason;
+      for (std::size_t i = begin; i < end; ++i)
+        if (pending[i].key == naive_key) {
+          emit(make_row(pending[i], spec, primitives, mo, naive, reference), pending[i], describe(naive));
+          pending.erase(pending.begin() + std::ptrdiff_t(i));
+          --end;
+          break;
+        }
+    }
+    for (std::size_t i = begin; i < end && !stop_requested(); ++i) {
+      const SweepConfig& c = pending[i];
+      if (!reference) {
+        emit(make_failed_row(c, spec, mo, no_reference), c, "failed: " + no_reference);
+        continue;
+      }
+      const Measurement m = measure(*scene, boxes, c.structure, c.params, mo, reference);
+      summary.build_s += m.spent_build_s;
+      summary.trace_s += m.spent_trace_s;
+      std::string what = describe(m);
+      if (m.status == RowStatus::Ok && m.render_ms) {
+        char buf[48];
+        std::snprintf(buf, sizeof buf, ", %.2fx naive", reference->render_ms / m.render_ms->median);
+        what += buf;
+      }
+      emit(make_row(c, spec, primitives, mo, m, reference), c, what);
+    }
+    begin = end;
+  }
+  summary.interrupted = stop_requested();
+  summary.wall_s = std::chrono::duration<double>(Clock::now() - t_start).count();
+
+  json run = {{"kind", kRunKind},
+              {"finished", utc_now_iso8601()},
+              {"rows_written", summary.measured},
+              {"interrupted", summary.interrupted},
+              {"wall_s", summary.wall_s},
+              {"build_s", summary.build_s},
+              {"trace_s", summary.trace_s},
+              {"harness_s", summary.wall_s - summary.build_s - summary.trace_s},
+              {"harness_fraction", summary.harness_fraction()}};
+  writer.append(run);
+  // The results file is built from what is on disk, so it holds exactly what a resume would see.
+  const json results = assemble_results(read_jsonl(options.jsonl_path).records, machine, definition,
+                                        options.shard_index, options.shard_count, mine);
+  summary.complete = results["complete"].get<bool>();
+  write_json_atomic(options.out_path, results);
+  return summary;
+}
+
+}  // namespace bench

@@ -1,0 +1,44 @@
+#pragma once
+// Runs a sweep: measures every pending configuration scene by scene, appends each row to the
+// JSON Lines file as soon as it is measured, and writes the results file at the end (also after
+// SIGINT/SIGTERM, with what is done).
+
+#include "sweep_definition.h"
+
+#include <string>
+
+namespace bench {
+
+/// Where and how to run a sweep.
+struct RunOptions {
+  std::string out_path;      ///< Final results JSON.
+  std::string jsonl_path;    ///< Row-by-row JSON Lines file.
+  bool resume = false;       ///< Keep the JSON Lines file's rows and skip their configurations.
+  int shard_index = 0;       ///< This shard, 0-based.
+  int shard_count = 1;       ///< Number of shards.
+  bool progress = true;      ///< Progress lines on stderr.
+};
+
+/// What a run did.
+struct RunSummary {
+  std::size_t shard_configs = 0;   ///< Configurations in this shard.
+  std::size_t already_done = 0;    ///< Skipped because the JSON Lines file had them (--resume).
+  std::size_t measured = 0;        ///< Rows written by this run.
+  std::size_t not_ok = 0;          ///< Of those, rows with status failed or error.
+  double wall_s = 0.0;             ///< Wall time of the run, s.
+  double build_s = 0.0;            ///< Time inside structure builds, s.
+  double trace_s = 0.0;            ///< Time inside render calls (timed, warm-up, counting), s.
+  bool interrupted = false;        ///< Stopped early by SIGINT/SIGTERM.
+  bool complete = false;           ///< The results file holds every configuration of the shard.
+
+  /// Harness overhead: wall time outside builds and renders, as a fraction of wall time.
+  double harness_fraction() const { return wall_s > 0 ? (wall_s - build_s - trace_s) / wall_s : 0.0; }
+};
+
+/// Runs the sweep. Throws SweepError for unusable files (e.g. --resume on another sweep's file).
+/// Setting ACCELBENCH_SWEEP_KILL_AFTER_ROWS=N makes the process SIGKILL itself after writing N
+/// rows (SIGTERM with ACCELBENCH_SWEEP_KILL_SIGNAL=TERM): the tests use it to check that a killed
+/// or stopped sweep resumes to the same rows.
+RunSummary run_sweep(const SweepDefinition& definition, const RunOptions& options);
+
+}  // namespace bench

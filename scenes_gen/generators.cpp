@@ -1,0 +1,65 @@
+#include "generators.h"
+
+#include "registry.h"
+
+#include <array>
+
+namespace scenes_gen {
+
+namespace {
+
+struct Entry {
+  std::string_view name;
+  std::string_view description;
+  bool takes_count;  ///< Whether --count means something to this generator.
+  tracer::Scene (*make)(const GenOptions&);
+};
+
+constexpr std::array kGenerators = {
+    Entry{"refraction", "the paper's Fig. 1: a glass bar before a checkered wall", false, make_refraction},
+    Entry{"spheres8000", "the paper's Fig. 7: 20x20x20 jittered spheres in a 10-unit cube (seeded)", false,
+          make_spheres8000},
+    Entry{"five", "the paper's Fig. 8: five spheres (glass, mirror, diffuse)", false, make_five},
+    Entry{"random", "--count N uniform random spheres in a 10-unit cube (seeded; default N 1000)", true,
+          make_random},
+    Entry{"grid", "--count N spheres on a regular cubic lattice (default N 1000)", true, make_grid},
+    Entry{"sphereflake", "SPD 'balls' sphereflake; --count is its size factor 0-6 (default 4: 7381 spheres)", true,
+          make_sphereflake},
+};
+
+const Entry* find(std::string_view name) {
+  for (const Entry& e : kGenerators)
+    if (e.name == name) return &e;
+  return nullptr;
+}
+
+}  // namespace
+
+tracer::Scene generate(std::string_view name, const GenOptions& options) {
+  const Entry* e = find(name);
+  if (!e) {
+    std::string known;
+    for (const Entry& g : kGenerators) known += (known.empty() ? "" : ", ") + std::string(g.name);
+    throw GenError("unknown generator '" + std::string(name) + "' (known: " + known + ")");
+  }
+  if (options.count && !e->takes_count)
+    throw GenError(std::string(name) + ": takes no count (it has a fixed size)");
+  if (options.count && *options.count < 0)
+    throw GenError(std::string(name) + ": count must be >= 0, got " + std::to_string(*options.count));
+  tracer::Scene scene = e->make(options);
+  scene.geometry.finalize();
+  return scene;
+}
+
+std::vector<std::string> generator_names() {
+  std::vector<std::string> out;
+  for (const Entry& e : kGenerators) out.emplace_back(e.name);
+  return out;
+}
+
+std::string generator_description(std::string_view name) {
+  const Entry* e = find(name);
+  return e ? std::string(e->description) : std::string();
+}
+
+}  // namespace scenes_gen

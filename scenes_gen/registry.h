@@ -1,0 +1,16 @@
+#pragma once
+// The generator functions behind scenes_gen::generate(), one file each; the table of names is
+// in generators.cpp.
+
+#include "generators.h"
+
+namespace scenes_gen {
+
+tracer::Scene make_refraction(const GenOptions& options);
+tracer::Scene make_spheres8000(const GenOptions& options);
+tracer::Scene make_five(const GenOptions& options);
+tracer::Scene make_random(const GenOptions& options);
+tracer::Scene make_grid(const GenOptions& options);         // grid.h
+tracer::Scene make_sphereflake(const GenOptions& options);  // sphereflake.h
+
+}  // namespace scenes_gen

@@ -1,0 +1,471 @@
+#!/usr/bin/python3
+"""Figures from accelbench results files (written by `accelbench sweep` or `accelbench merge`).
+
+Reads only the results JSON files named on the command line and writes, as PNG and SVG:
+
+  paper_speedup   the analogue of the paper's Figures 2 and 3: render time per structure with the
+                  speedup over naive on a second axis, for spheres8000 and five, with the paper's
+                  own speedups (3.3 octree, 3.8 kd-tree; D. Cohen, "A Better Ray Tracer", RPI) marked
+  heatmap_render_ms, heatmap_nodes_per_ray
+                  render time and nodes visited per ray over max_depth x max_leaf_size, per structure
+  scaling         render time against the number of spheres (log-log) with fitted slopes and the
+                  break-even point against naive, per scene family
+  build_vs_trace  build time against render time, and the rays it takes to pay for a build
+
+and prints a Markdown table of the best measured speedups beside the paper's.
+
+Usage: scripts/plot.py results/paper.json results/scaling.json [--out results]
+"""
+
+import argparse
+import json
+import math
+import os
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import matplotlib.ticker  # noqa: E402
+import numpy as np  # noqa: E402
+from matplotlib.colors import LogNorm  # noqa: E402
+
+CITATION = 'D. Cohen, "A Better Ray Tracer", RPI'
+PAPER_SPEEDUP = {"octree": 3.3, "kdtree": 3.8}
+PAPER_SCENES = ["spheres8000", "five"]
+SCALING_FAMILIES = ["grid", "random", "sphereflake"]
+FIGURES = ["paper_speedup", "heatmap_render_ms", "heatmap_nodes_per_ray", "scaling", "build_vs_trace"]
+
+# One colour per structure variant, the same in every figure.
+VARIANT_ORDER = [
+    "naive",
+    "octree (leaves)",
+    "octree (every_level)",
+    "kd-tree midpoint (leaves)",
+    "kd-tree midpoint (every_level)",
+    "kd-tree SAH",
+    "kd-tree SAH (every_level)",
+    "bvh",
+    "embree",
+]
+COLORS = dict(zip(VARIANT_ORDER, plt.get_cmap("tab10").colors))
+
+
+class PlotError(Exception):
+    """A results file that cannot be plotted; the message is one line."""
+
+
+def load_rows(paths):
+    """Every row of every file, each tagged with its file's resolution and thread count."""
+    rows, machines = [], []
+    for path in paths:
+        try:
+            with open(path, encoding="utf-8") as f:
+                doc = json.load(f)
+        except (OSError, json.JSONDecodeError) as e:
+            raise PlotError(f"{path}: cannot read results: {e}") from e
+        if not isinstance(doc, dict) or doc.get("format") != "accelbench-results":
+            raise PlotError(f"{path}: /format: not an accelbench results file")
+        machines.append(doc.get("machine", {}))
+        for row in doc.get("rows", []):
+            row = dict(row)
+            row["_sweep"] = doc.get("sweep", {}).get("name", os.path.basename(path))
+            rows.append(row)
+    return rows, machines
+
+
+def variant(row):
+    """Display name of a row's structure with the knobs that change its algorithm."""
+    params = row.get("params") or row.get("requested") or {}
+    name = row.get("built") or row["structure"]
+    if name == "octree":
+        return f"octree ({params.get('placement', 'leaves')})"
+    if name == "kdtree":
+        placement = params.get("placement", "leaves")
+        if params.get("split", "midpoint") == "sah":
+            return "kd-tree SAH" + (" (every_level)" if placement == "every_level" else "")
+        return f"kd-tree midpoint ({placement})"
+    return name
+
+
+def order_key(v):
+    return VARIANT_ORDER.index(v) if v in VARIANT_ORDER else len(VARIANT_ORDER)
+
+
+def ok_rows(rows):
+    return [r for r in rows if r.get("status") == "ok" and "render_ms" in r]
+
+
+def best_per_variant(rows, scene):
+    """The fastest ok row of each variant on one scene."""
+    best = {}
+    for r in ok_rows(rows):
+        if r["scene"] != scene:
+            continue
+        v = variant(r)
+        if v not in best or r["render_ms"]["median"] < best[v]["render_ms"]["median"]:
+            best[v] = r
+    return dict(sorted(best.items(), key=lambda kv: order_key(kv[0])))
+
+
+def save(fig, out_dir, name):
+    paths = []
+    for ext in ("png", "svg"):
+        path = os.path.join(out_dir, f"{name}.{ext}")
+        fig.savefig(path, dpi=96 if ext == "png" else None, bbox_inches="tight")
+        paths.append(path)
+    plt.close(fig)
+    for p in paths:
+        print(f"plot: wrote {p}")
+
+
+def setting_text(row):
+    threads = row.get("threads", 1)
+    return (f"{row.get('width')}x{row.get('height')} pixels, "
+            f"{'all cores' if threads == 0 else str(threads) + ' thread' + ('s' if threads != 1 else '')}, "
+            f"median of {row.get('repetitions')}")
+
+
+def plot_paper_speedup(rows, out_dir):
+    scenes = [s for s in PAPER_SCENES if best_per_variant(rows, s)]
+    if not scenes:
+        return False
+    fig, axes = plt.subplots(1, len(scenes), figsize=(7.0 * len(scenes), 5.6), squeeze=False)
+    fig.subplots_adjust(wspace=0.42, bottom=0.3, top=0.84)
+    handles = {}
+    for ax, scene in zip(axes[0], scenes):
+        best = best_per_variant(rows, scene)
+        names = list(best)
+        x = np.arange(len(names))
+        med = np.array([best[n]["render_ms"]["median"] for n in names])
+        lo = med - np.array([best[n]["render_ms"]["min"] for n in names])
+        hi = np.array([best[n]["render_ms"]["max"] for n in names]) - med
+        bars = ax.bar(x, med, color=[COLORS.get(n, "grey") for n in names], yerr=[lo, hi], capsize=3,
+                      error_kw={"elinewidth": 1, "ecolor": "dimgrey"})
+        handles["render time, median (bars; whiskers: min to max)"] = bars[0]
+        ax.set_yscale("log")
+        ax.set_ylim(med.min() / 4, (med + hi).max() * 3)
+        ax.set_ylabel("render time (ms, log scale)")
+        ax.set_xticks(x)
+        ax.set_xticklabels(names, rotation=30, ha="right")
+        prims = next(iter(best.values())).get("primitives", "?")
+        ax.set_title(f"{scene} ({prims} spheres)")
+
+        ax2 = ax.twinx()
+        speed = np.array([best[n].get("speedup", np.nan) for n in names])
+        (dots,) = ax2.plot(x, speed, "D", color="black", markersize=7)
+        handles["speedup over naive, measured here (right axis)"] = dots
+        for xi, sp in zip(x, speed):
+            ax2.annotate(f"{sp:.3g}x", (xi, sp), textcoords="offset points", xytext=(0, 8), ha="center",
+                         fontsize=8, fontweight="bold")
+        # The paper's speedups (spheres8000) at the structures they were measured for, the value
+        # written once per structure.
+        written = set()
+        for xi, n in zip(x, names):
+            base = "octree" if n.startswith("octree") else "kdtree" if n.startswith("kd-tree midpoint") else None
+            if base and scene == "spheres8000":
+                (star,) = ax2.plot([xi], [PAPER_SPEEDUP[base]], "*", color="magenta", markersize=15,
+                                   markeredgecolor="black")
+                if base not in written:
+                    ax2.annotate(f"paper: {PAPER_SPEEDUP[base]}x", (xi, PAPER_SPEEDUP[base]),
+                                 textcoords="offset points", xytext=(0, -16), ha="center", fontsize=8,
+                                 color="magenta", fontweight="bold")
+                    written.add(base)
+                handles["the paper's speedup (3.3 octree, 3.8 kd-tree)"] = star
+        line = ax2.axhline(1.0, color="grey", linestyle=":", linewidth=1)
+        handles["speedup 1: as fast as naive"] = line
+        if scene == "five":
+            ax2.text(0.02, 0.97, "paper: octree and kd-tree slower than naive here (speedup < 1)",
+                     transform=ax2.transAxes, fontsize=8, color="magenta", va="top")
+        ax2.set_yscale("log")
+        ax2.set_ylabel("speedup over naive (x, log scale)")
+        finite = speed[np.isfinite(speed)]
+        top = max(np.max(finite) if finite.size else 1.0, 4.0)
+        bottom = min(np.min(finite) if finite.size else 1.0, 0.5)
+        ax2.set_ylim(bottom / 3, top * 4)
+    sample = next(iter(best_per_variant(rows, scenes[0]).values()))
+    fig.legend(list(handles.values()), list(handles.keys()), loc="lower center", ncol=2, fontsize=9,
+               frameon=False)
+    fig.suptitle("Render time per structure (best configuration of each) and speedup over naive\n"
+                 f"analogue of the paper's Figs. 2 and 3 ({CITATION}); {setting_text(sample)}", fontsize=11)
+    save(fig, out_dir, "paper_speedup")
+    return True
+
+
+def knob_grid_rows(rows):
+    """scene -> variant -> rows that have both max_depth and max_leaf_size requested."""
+    grid = {}
+    for r in rows:
+        req = r.get("requested", {})
+        if "max_depth" in req and "max_leaf_size" in req:
+            grid.setdefault(r["scene"], {}).setdefault(variant(r), []).append(r)
+    return grid
+
+
+def heatmap_scene(grid):
+    """The scene with the most swept configurations, preferring spheres8000."""
+    if "spheres8000" in grid:
+        return "spheres8000"
+    return max(grid, key=lambda s: sum(len(v) for v in grid[s].values()))
+
+
+def plot_heatmaps(rows, out_dir):
+    grid = knob_grid_rows(rows)
+    if not grid:
+        return False
+    scene = heatmap_scene(grid)
+    variants = sorted(grid[scene], key=order_key)
+    metrics = [("heatmap_render_ms", "render time (ms)", lambda r: r["render_ms"]["median"]),
+               ("heatmap_nodes_per_ray", "nodes visited per ray", lambda r: r["traversal"]["nodes_per_ray"])]
+    for name, label, value in metrics:
+        cols = min(3, len(variants))
+        nrows = math.ceil(len(variants) / cols)
+        fig, axes = plt.subplots(nrows, cols, figsize=(max(10.0, 5.0 * cols), 4.2 * nrows + 1.0), squeeze=False)
+        fig.subplots_adjust(top=1.0 - 1.0 / (4.2 * nrows + 1.0), hspace=0.35, wspace=0.3)
+        cells = [value(r) for v in variants for r in grid[scene][v] if r.get("status") == "ok"]
+        positive = [c for c in cells if c > 0]
+        norm = LogNorm(vmin=min(positive), vmax=max(positive)) if positive else None
+        image = None
+        for ax, v in zip(axes.flat, variants):
+            vrows = grid[scene][v]
+            depths = sorted({r["requested"]["max_depth"] for r in vrows})
+            leaves = sorted({r["requested"]["max_leaf_size"] for r in vrows})
+            m = np.full((len(depths), len(leaves)), np.nan)
+            failed = []
+            for r in vrows:
+                i, j = depths.index(r["requested"]["max_depth"]), leaves.index(r["requested"]["max_leaf_size"])
+                if r.get("status") == "ok":
+                    m[i, j] = value(r)
+                else:
+                    failed.append((i, j, r.get("status", "?")))
+            image = ax.imshow(np.ma.masked_invalid(m), origin="lower", cmap="viridis_r", norm=norm,
+                              aspect="auto")
+            for i in range(len(depths)):
+                for j in range(len(leaves)):
+                    if np.isfinite(m[i, j]):
+                        ax.text(j, i, f"{m[i, j]:.3g}", ha="center", va="center", fontsize=7,
+                                color="white" if norm and norm(m[i, j]) > 0.6 else "black")
+            for i, j, status in failed:
+                ax.text(j, i, status, ha="center", va="center", fontsize=7, color="red")
+            if np.isfinite(m).any():
+                bi, bj = np.unravel_index(np.nanargmin(m), m.shape)
+                ax.add_patch(plt.Rectangle((bj - 0.5, bi - 0.5), 1, 1, fill=False, edgecolor="red", linewidth=2))
+            ax.set_xticks(range(len(leaves)))
+            ax.set_xticklabels(leaves)
+            ax.set_yticks(range(len(depths)))
+            ax.set_yticklabels(depths)
+            ax.set_xlabel("max_leaf_size (primitives)")
+            ax.set_ylabel("max_depth (levels)")
+            ax.set_title(v)
+        for ax in list(axes.flat)[len(variants):]:
+            ax.axis("off")
+        if image is not None:
+            bar = fig.colorbar(image, ax=axes.ravel().tolist(), shrink=0.85, label=f"{label}, log colour scale")
+            bar.formatter = matplotlib.ticker.FormatStrFormatter("%.3g")
+            bar.minorformatter = matplotlib.ticker.FormatStrFormatter("%.3g")
+            bar.update_ticks()
+        sample = grid[scene][variants[0]][0]
+        fig.suptitle(f"{label[0].upper() + label[1:]} over max_depth x max_leaf_size on {scene}\n"
+                     f"{setting_text(sample)}; red box: the minimum; red text: failed or error", fontsize=11)
+        save(fig, out_dir, name)
+    return True
+
+
+def crossing(ns, t_struct, t_naive):
+    """Smallest N (log-interpolated) from which the structure is faster than naive: None when it
+    never is, 0 when it already is at the smallest N measured."""
+    ratio = [math.log(s / n) for s, n in zip(t_struct, t_naive)]
+    for k in range(len(ns)):
+        if ratio[k] < 0:
+            if k == 0:
+                return 0
+            r0, r1 = ratio[k - 1], ratio[k]
+            f = r0 / (r0 - r1)
+            return math.exp(math.log(ns[k - 1]) + f * (math.log(ns[k]) - math.log(ns[k - 1])))
+    return None
+
+
+def plot_scaling(rows, out_dir):
+    families = [f for f in SCALING_FAMILIES if any(r.get("scene_family") == f for r in ok_rows(rows))]
+    if not families:
+        return False
+    fig, axes = plt.subplots(1, len(families), figsize=(6.0 * len(families), 5.0), squeeze=False)
+    for ax, family in zip(axes[0], families):
+        scenes = sorted({r["scene"] for r in ok_rows(rows) if r.get("scene_family") == family},
+                        key=lambda s: next(r["primitives"] for r in rows if r["scene"] == s and "primitives" in r))
+        series = {}
+        for s in scenes:
+            for v, r in best_per_variant(rows, s).items():
+                series.setdefault(v, []).append((r["primitives"], r["render_ms"]["median"]))
+        naive = dict(series.get("naive", []))
+        for v in sorted(series, key=order_key):
+            pts = sorted(series[v])
+            ns = np.array([p[0] for p in pts], dtype=float)
+            ts = np.array([p[1] for p in pts])
+            keep = ns >= 1
+            ns, ts = ns[keep], ts[keep]
+            if len(ns) == 0:
+                continue
+            label = v
+            # The slope of the large-N end, where the asymptotic cost shows: a least-squares fit
+            # over N >= 100, or over N >= 10 when fewer than three points are that large.
+            fit = ns >= 100
+            if fit.sum() < 3:
+                fit = ns >= 10
+            if fit.sum() >= 2:
+                slope = np.polyfit(np.log10(ns[fit]), np.log10(ts[fit]), 1)[0]
+                label += f": slope {slope:.2f}"
+            if v != "naive" and naive:
+                common = [(n, t) for n, t in zip(ns, ts) if n in naive]
+                if len(common) >= 1:
+                    be = crossing([c[0] for c in common], [c[1] for c in common], [naive[c[0]] for c in common])
+                    if be is None:
+                        label += ", never beats naive"
+                    elif be == 0:
+                        label += f", beats naive at every N (from {ns[0]:.3g})"
+                    else:
+                        label += f", beats naive from N~{be:.3g}"
+                        ax.plot([be], [np.interp(math.log(be), np.log(ns), ts)], "o", mfc="none",
+                                color=COLORS.get(v, "grey"), markersize=11)
+            ax.plot(ns, ts, "-o", color=COLORS.get(v, "grey"), label=label, markersize=4)
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel("spheres in the scene, N (log scale)")
+        ax.set_ylabel("render time (ms, log scale)")
+        ax.set_title(f"{family}")
+        ax.grid(True, which="major", alpha=0.3)
+        ax.legend(fontsize=7, loc="upper left", title="slope: d log t / d log N at large N; "
+                  "circle: break-even", title_fontsize=7)
+    sample = ok_rows([r for r in rows if r.get("scene_family") in families])[0]
+    fig.suptitle(f"Render time against scene size (best configuration per N; {setting_text(sample)})",
+                 fontsize=11)
+    save(fig, out_dir, "scaling")
+    return True
+
+
+def plot_build_vs_trace(rows, out_dir):
+    scenes = [s for s in PAPER_SCENES if best_per_variant(rows, s)]
+    if not scenes:
+        scenes = sorted({r["scene"] for r in ok_rows(rows)})[:2]
+    if not scenes:
+        return False
+    fig, (ax, bx) = plt.subplots(1, 2, figsize=(13, 5.6))
+    fig.subplots_adjust(wspace=0.3)
+    main = scenes[0]
+    seen = set()
+    for r in sorted(ok_rows(rows), key=lambda r: order_key(variant(r))):
+        if r["scene"] != main or r["structure"] == "naive":
+            continue
+        v = variant(r)
+        ax.plot(r["build_ms"], r["render_ms"]["median"], "o", color=COLORS.get(v, "grey"), alpha=0.75,
+                markersize=5, label=None if v in seen else v)
+        seen.add(v)
+    naive_ms = next((r["render_ms"]["median"] for r in ok_rows(rows)
+                     if r["scene"] == main and r["structure"] == "naive"), None)
+    if naive_ms:
+        ax.axhline(naive_ms, color=COLORS["naive"], linestyle="--", label="naive render time")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("build time (ms, log scale)")
+    ax.set_ylabel("render time (ms, log scale)")
+    ax.set_title(f"Every configuration on {main}")
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=7)
+
+    # Rays needed before build + n * t_ray(structure) < n * t_ray(naive).
+    width = 0.8 / max(1, len(scenes))
+    all_variants = sorted({v for s in scenes for v in best_per_variant(rows, s) if v != "naive"}, key=order_key)
+    x = np.arange(len(all_variants))
+    top = 1.0
+    for k, s in enumerate(scenes):
+        best = best_per_variant(rows, s)
+        if "naive" not in best:
+            continue
+        naive = best["naive"]
+        naive_per_ray = naive["render_ms"]["median"] / max(1, naive["rays"]["total"])
+        heights, notes = [], []
+        for v in all_variants:
+            r = best.get(v)
+            if r is None:
+                heights.append(np.nan)
+                notes.append("")
+                continue
+            per_ray = r["render_ms"]["median"] / max(1, r["rays"]["total"])
+            gain = naive_per_ray - per_ray
+            if gain <= 0:
+                heights.append(np.nan)
+                notes.append("never")
+            else:
+                heights.append(max(r["build_ms"] / gain, 1.0))
+                notes.append("")
+        xs = x - 0.4 + width * (k + 0.5)
+        bx.bar(xs, heights, width, label=f"{s} (best configuration)", color=["#4477aa", "#ee8866", "#44aa99"][k % 3])
+        finite = [h for h in heights if np.isfinite(h)]
+        top = max([top] + finite)
+        for xi, h, note in zip(xs, heights, notes):
+            if note:
+                bx.text(xi, 1.2, note, rotation=90, ha="center", va="bottom", fontsize=8, color="red")
+            elif np.isfinite(h):
+                bx.text(xi, h * 1.1, f"{h:.2g}", ha="center", va="bottom", fontsize=7)
+    bx.set_yscale("log")
+    bx.set_ylim(1, top * 20)
+    bx.set_xticks(x)
+    bx.set_xticklabels(all_variants, rotation=30, ha="right")
+    bx.set_ylabel("rays traced before the build pays off (log scale)")
+    bx.set_title("Rays needed to pay for the build\n= build time / (naive's time per ray - its time per ray)")
+    bx.legend(fontsize=8)
+    bx.grid(True, axis="y", alpha=0.3)
+    fig.suptitle("Build time against trace time (\"never\": not faster than naive on that scene)", fontsize=11)
+    save(fig, out_dir, "build_vs_trace")
+    return True
+
+
+def speedup_table(rows):
+    """Markdown: best measured speedup per structure beside the paper's."""
+    lines = ["| scene | structure | best configuration | render ms | speedup over naive | paper |",
+             "| --- | --- | --- | ---: | ---: | ---: |"]
+    for scene in PAPER_SCENES:
+        for v, r in best_per_variant(rows, scene).items():
+            paper = ""
+            if scene == "spheres8000" and v.startswith("octree"):
+                paper = "3.3"
+            elif scene == "spheres8000" and v.startswith("kd-tree midpoint"):
+                paper = "3.8"
+            elif scene == "five" and (v.startswith("octree") or v.startswith("kd-tree midpoint")):
+                paper = "< 1"
+            knobs = ", ".join(f"{k}={val}" for k, val in sorted(r.get("requested", {}).items())) or "defaults"
+            lines.append(f"| {scene} | {v} | {knobs} | {r['render_ms']['median']:.3g} | "
+                         f"{r.get('speedup', float('nan')):.3g} | {paper} |")
+    return "\n".join(lines)
+
+
+def main(argv):
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("results", nargs="+", help="results JSON files (accelbench sweep/merge output)")
+    parser.add_argument("--out", default="results", help="directory for the figures (default: results)")
+    args = parser.parse_args(argv)
+    try:
+        rows, _ = load_rows(args.results)
+    except PlotError as e:
+        print(f"plot: {e}", file=sys.stderr)
+        return 1
+    if not ok_rows(rows):
+        print("plot: no ok rows to plot", file=sys.stderr)
+        return 1
+    os.makedirs(args.out, exist_ok=True)
+    drawn = {
+        "paper_speedup": plot_paper_speedup(rows, args.out),
+        "heatmaps": plot_heatmaps(rows, args.out),
+        "scaling": plot_scaling(rows, args.out),
+        "build_vs_trace": plot_build_vs_trace(rows, args.out),
+    }
+    for name, ok in drawn.items():
+        if not ok:
+            print(f"plot: skipped {name}: the results hold no rows for it", file=sys.stderr)
+    print(speedup_table(rows))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))

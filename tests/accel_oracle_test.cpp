@@ -1,0 +1,357 @@
+// The cross-structure oracle: every structure the factory builds, under a grid of its knobs,
+// returns the same closest primitive, a bit-equal t and the same any-hit answer as naive, on
+// seeded adversarial scenes and rays. The grid is derived from each structure's own knobs
+// (params_of of its default build), so a structure added to the factory is tested here at once.
+
+#include "accel/accel.h"
+#include "tracer/geometry.h"
+#include "tracer/intersector.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <random>
+#include <string>
+#include <vector>
+
+namespace {
+
+using accel::Aabb;
+using accel::Ray;
+using accel::Vec3;
+using nlohmann::json;
+using tracer::Hit;
+
+// ---------------------------------------------------------------------------------------------
+// Scenes
+
+struct OracleScene {
+  std::string name;
+  tracer::Geometry geometry;
+};
+
+void add_sphere(tracer::Geometry& g, Vec3 c, float r) { g.spheres.push_back({c, r, 0}); }
+
+OracleScene make_scene(const std::string& kind, std::uint32_t seed) {
+  OracleScene s{kind, {}};
+  tracer::Geometry& g = s.geometry;
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> u(-5.0f, 5.0f), radius(0.05f, 0.5f);
+  if (kind == "uniform") {
+    for (int i = 0; i < 200; ++i) add_sphere(g, {u(rng), u(rng), u(rng)}, radius(rng));
+  } else if (kind == "clustered") {
+    std::normal_distribution<float> spread(0.0f, 0.15f);
+    for (int c = 0; c < 5; ++c) {
+      const Vec3 centre(u(rng), u(rng), u(rng));
+      for (int i = 0; i < 40; ++i)
+        add_sphere(g, centre + Vec3(spread(rng), spread(rng), spread(rng)), 0.2f * radius(rng));
+    }
+  } else if (kind == "huge_among_tiny") {
+    add_sphere(g, {0.5f, -0.25f, 0.0f}, 40.0f);
+    for (int i = 0; i < 150; ++i) add_sphere(g, {u(rng), u(rng), u(rng)}, 0.01f);
+    std::shuffle(g.spheres.begin(), g.spheres.end(), rng);  // the huge one at a random id
+  } else if (kind == "line") {
+    for (int i = 0; i < 100; ++i) add_sphere(g, {-5.0f + 0.1f * float(i), 0.0f, 0.0f}, 0.3f);
+  } else if (kind == "duplicates") {
+    for (int i = 0; i < 30; ++i) {
+      const Vec3 c(u(rng), u(rng), u(rng));
+      const float r = radius(rng);
+      for (int k = 0; k < 4; ++k) add_sphere(g, c, r);
+    }
+    std::shuffle(g.spheres.begin(), g.spheres.end(), rng);
+  } else if (kind == "grid") {
+    // Exactly representable centres and radii: box faces and midplanes coincide exactly.
+    for (int x = 0; x < 6; ++x)
+      for (int y = 0; y < 6; ++y)
+        for (int z = 0; z < 6; ++z) add_sphere(g, {float(x), float(y), float(z)}, 0.5f);
+  } else if (kind == "single") {
+    add_sphere(g, {0.25f, 0.5f, -0.75f}, 1.0f);
+  } else if (kind != "empty") {
+    ADD_FAILURE() << "unknown scene " << kind;
+  }
+  g.finalize();
+  return s;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Rays
+
+Aabb scene_box(std::span<const Aabb> boxes) {
+  Aabb b;
+  for (const Aabb& x : boxes) b.grow(x);
+  if (b.is_empty()) b = {Vec3(-1.0f), Vec3(1.0f)};
+  return b;
+}
+
+/// Coordinates along one axis where a tree may place a plane: the box faces, the midpoint
+/// subdivision of the scene box (kd-tree) and of the cube around it (octree), to 1/8.
+std::vector<float> split_planes(const Aabb& box, int axis) {
+  std::vector<float> out;
+  const float lo = box.lo[axis], ext = box.hi[axis] - box.lo[axis];
+  const float cube = std::max({box.hi.x - box.lo.x, box.hi.y - box.lo.y, box.hi.z - box.lo.z});
+  const float centre = 0.5f * (box.lo[axis] + box.hi[axis]);
+  for (int k = 0; k <= 8; ++k) {
+    out.push_back(lo + ext * float(k) / 8.0f);
+    out.push_back(centre + cube * (float(k) / 8.0f - 0.5f));
+    out.push_back(lo + cube * float(k) / 8.0f);
+  }
+  return out;
+}
+
+std::vector<Ray> make_rays(const tracer::Geometry& geometry, std::uint32_t seed) {
+  const std::vector<Aabb> boxes = geometry.primitive_bounds();
+  const Aabb box = scene_box(boxes);
+  const Vec3 c = box.center();
+  const float size = glm::length(box.extent()) + 1.0f;
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> u01(0.0f, 1.0f), u11(-1.0f, 1.0f);
+  auto in_box = [&] {
+    return box.lo + Vec3(u01(rng), u01(rng), u01(rng)) * box.extent();
+  };
+  auto random_dir = [&] {
+    Vec3 d;
+    do d = Vec3(u11(rng), u11(rng), u11(rng));
+    while (glm::dot(d, d) < 1e-3f);
+    return d;
+  };
+  auto signed_zero = [&] { return (rng() & 1) ? 0.0f : -0.0f; };
+  std::vector<Ray> rays;
+  auto add = [&](Vec3 org, Vec3 dir) {
+    Ray r;
+    r.org = org;
+    r.dir = dir;
+    rays.push_back(r);
+  };
+
+  for (int i = 0; i < 80; ++i) {  // outside, aimed into the scene
+    const Vec3 org = c + size * glm::normalize(random_dir());
+    add(org, in_box() - org);
+  }
+  for (int i = 0; i < 80; ++i) add(c + 1.5f * size * glm::normalize(random_dir()), random_dir());
+  for (int i = 0; i < 80; ++i) add(in_box(), random_dir());  // inside
+  for (int i = 0; i < 80; ++i) {  // exact +-0 direction components, one or two of them
+    Vec3 d = random_dir();
+    const int a = int(rng() % 3);
+    d[a] = signed_zero();
+    if (rng() & 1) d[(a + 1) % 3] = signed_zero();
+    add(in_box() - 0.5f * size * d, d);
+  }
+  for (int i = 0; i < 60; ++i) {  // axis-aligned rays in the planes trees split on
+    const int a = int(rng() % 3), b = (a + 1 + int(rng() % 2)) % 3, along = 3 - a - b;
+    const std::vector<float> pa = split_planes(box, a), pb = split_planes(box, b);
+    Vec3 org = in_box();
+    org[a] = pa[rng() % pa.size()];
+    org[b] = pb[rng() % pb.size()];
+    org[along] = (rng() & 1) ? box.lo[along] - 1.0f : box.hi[along] + 1.0f;
+    Vec3 d(signed_zero(), signed_zero(), signed_zero());
+    d[along] = org[along] < c[along] ? 1.0f : -1.0f;
+    add(org, d);
+  }
+  for (int i = 0; i < 60; ++i) {  // in one split plane, any direction within it
+    const int a = int(rng() % 3);
+    const std::vector<float> pa = split_planes(box, a);
+    Vec3 org = in_box();
+    org[a] = pa[rng() % pa.size()];
+    Vec3 d = random_dir();
+    d[a] = signed_zero();
+    add(org - 0.5f * size * d, d);
+  }
+  for (std::size_t i = 0; i < boxes.size() && i < 40; ++i) {  // on primitive box faces
+    const Aabb& b = boxes[rng() % boxes.size()];
+    const int a = int(rng() % 3), along = (a + 1 + int(rng() % 2)) % 3, third = 3 - a - along;
+    Vec3 org = b.center();
+    org[a] = (rng() & 1) ? b.lo[a] : b.hi[a];  // tangent plane of a sphere
+    if (rng() & 1) org[third] = (rng() & 1) ? b.lo[third] : b.hi[third];  // box edge
+    org[along] = box.lo[along] - 1.0f;
+    Vec3 d(signed_zero(), signed_zero(), signed_zero());
+    d[along] = 1.0f;
+    add(org, d);
+    Vec3 through = b.center();  // through the centre: the hit lies on the box face
+    through[along] = box.hi[along] + 1.0f;
+    d[along] = -1.0f;
+    add(through, d);
+  }
+  // Varied intervals on copies of the rays so far.
+  const std::size_t base = rays.size();
+  for (std::size_t i = 0; i < base; i += 2) {
+    Ray r = rays[i];
+    r.tmin = u01(rng) * 0.5f;
+    r.tmax = (rng() & 1) ? accel::kInfinity : 0.5f + u01(rng) * 2.0f;
+    rays.push_back(r);
+  }
+  return rays;
+}
+
+/// Rays whose tmin or tmax is exactly the naive hit distance of another ray: the ties at the
+/// interval ends that a structure's box culling must not get wrong.
+void add_interval_ties(std::vector<Ray>& rays, const std::vector<Hit>& hits) {
+  const std::size_t n = rays.size();
+  for (std::size_t i = 0; i < n; i += 3) {
+    if (!hits[i].found()) continue;
+    Ray at_min = rays[i], at_max = rays[i];
+    at_min.tmin = hits[i].t;
+    at_max.tmax = hits[i].t;
+    rays.push_back(at_min);
+    rays.push_back(at_max);
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// The knob grid of a structure, from the knobs its default build reports.
+
+std::vector<json> knob_grid(const std::string& name) {
+  const std::vector<Aabb> one{Aabb{Vec3(0.0f), Vec3(1.0f)}};
+  const json defaults = accel::params_of(accel::make_accel(name, json::object(), one));
+  std::vector<json> grid{json::object()};
+  auto cross = [&grid](const char* key, const std::vector<json>& values) {
+    std::vector<json> out;
+    for (const json& g : grid)
+      for (const json& v : values) {
+        json x = g;
+        x[key] = v;
+        out.push_back(x);
+      }
+    grid = out;
+  };
+  if (defaults.contains("max_depth")) cross("max_depth", {0, 1, 2, 3, 5, 8, 12, 20});
+  if (defaults.contains("max_leaf_size")) cross("max_leaf_size", {1, 2, 4, 8, 16});
+  if (defaults.contains("placement")) cross("placement", {"leaves", "every_level"});
+  if (defaults.contains("split")) cross("split", {"midpoint", "sah"});
+  // `leaves` placement references a primitive from every leaf it overlaps: where primitives
+  // overlap, deep trees multiply cells without bound (the explosion the memory budget guards,
+  // tested by the structures' own tests). The oracle keeps those trees to depth 8.
+  std::erase_if(grid, [](const json& g) {
+    return g.value("placement", "") == "leaves" && g.value("max_depth", 0) > 8;
+  });
+  // Knobs that do not interact with the tree shape are varied one at a time.
+  if (defaults.contains("bins")) {
+    grid.push_back({{"bins", 8}, {"max_leaf_size", 1}});
+    grid.push_back({{"bins", 256}});
+  }
+  if (defaults.contains("traversal_cost")) grid.push_back({{"traversal_cost", 0.1}});
+  if (defaults.contains("build_quality")) grid.push_back({{"build_quality", "medium"}});
+  if (defaults.contains("selected_by")) grid.push_back({{"naive_max_prims", 0}});
+  return grid;
+}
+
+// ---------------------------------------------------------------------------------------------
+
+struct Reference {
+  std::vector<Ray> rays;
+  std::vector<Hit> closest;
+  std::vector<bool> occluded;
+};
+
+template <class Intersector>
+void trace_all(const Intersector& isect, const std::vector<Ray>& rays, std::vector<Hit>& closest,
+               std::vector<bool>& occluded) {
+  closest.resize(rays.size());
+  occluded.resize(rays.size());
+  for (std::size_t i = 0; i < rays.size(); ++i) {
+    closest[i] = isect.closest(rays[i]);
+    occluded[i] = isect.occluded(rays[i]);
+  }
+}
+
+Reference reference_for(const tracer::Geometry& geometry, std::uint32_t seed) {
+  Reference ref;
+  ref.rays = make_rays(geometry, seed);
+  const accel::AnyAccel naive = accel::make_accel("naive", nullptr, geometry.primitive_bounds());
+  auto run = [&] {
+    tracer::with_intersector(geometry, naive, false, [&](const auto& isect) {
+      trace_all(isect, ref.rays, ref.closest, ref.occluded);
+    });
+  };
+  run();
+  add_interval_ties(ref.rays, ref.closest);
+  run();
+  return ref;
+}
+
+std::string describe(const Ray& r) {
+  char buf[256];
+  std::snprintf(buf, sizeof buf, "org (%a %a %a) dir (%a %a %a) [%a, %a]", r.org.x, r.org.y,
+                r.org.z, r.dir.x, r.dir.y, r.dir.z, r.tmin, r.tmax);
+  return buf;
+}
+
+/// Compares one build against the reference; returns the number of mismatching rays.
+int compare(const std::string& label, const tracer::Geometry& geometry, const accel::AnyAccel& a,
+            const Reference& ref, bool counting) {
+  std::vector<Hit> closest;
+  std::vector<bool> occluded;
+  tracer::with_intersector(geometry, a, counting, [&](const auto& isect) {
+    if constexpr (std::decay_t<decltype(isect)>::kCounting) {
+      accel::TraversalCounters counters;
+      trace_all(isect.with_counters(&counters), ref.rays, closest, occluded);
+      EXPECT_EQ(counters.rays, 2 * ref.rays.size()) << label;
+    } else {
+      trace_all(isect, ref.rays, closest, occluded);
+    }
+  });
+  int bad = 0;
+  for (std::size_t i = 0; i < ref.rays.size(); ++i) {
+    const bool same = closest[i].prim == ref.closest[i].prim &&
+                      std::bit_cast<std::uint32_t>(closest[i].t) ==
+                          std::bit_cast<std::uint32_t>(ref.closest[i].t) &&
+                      occluded[i] == ref.occluded[i];
+    if (!same && ++bad <= 3)
+      ADD_FAILURE() << label << (counting ? " (counting)" : "") << " ray " << i << " "
+                    << describe(ref.rays[i]) << ": prim " << closest[i].prim << " t "
+                    << closest[i].t << " occluded " << occluded[i] << ", naive prim "
+                    << ref.closest[i].prim << " t " << ref.closest[i].t << " occluded "
+                    << ref.occluded[i];
+  }
+  return bad;
+}
+
+class Oracle : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(Oracle, EveryStructureAndKnobMatchesNaive) {
+  const std::string kind = GetParam();
+  const std::uint32_t seed = std::uint32_t(std::hash<std::string>{}(kind) & 0xffff);
+  const OracleScene scene = make_scene(kind, seed);
+  const std::vector<Aabb> boxes = scene.geometry.primitive_bounds();
+  const Reference ref = reference_for(scene.geometry, seed + 1);
+  ASSERT_GT(ref.rays.size(), 500u);
+
+  // A small budget keeps an exploding configuration (octree, `leaves`, deep) short; such a
+  // build must fail cleanly with a ConfigError naming --max-memory.
+  const accel::BuildLimits limits{16ull << 20};
+  int configs = 0, over_budget = 0;
+  for (const std::string& name : accel::accel_names()) {
+    if (!accel::accel_built(name)) continue;
+    for (const json& knobs : knob_grid(name)) {
+      const std::string label = kind + " / " + name + " " + knobs.dump();
+      accel::AnyAccel a;
+      try {
+        a = accel::make_accel(name, knobs, boxes, limits);
+      } catch (const accel::ConfigError& e) {
+        EXPECT_NE(std::string(e.what()).find("--max-memory"), std::string::npos) << label << ": " << e.what();
+        ++over_budget;
+        continue;
+      }
+      ++configs;
+      EXPECT_EQ(compare(label, scene.geometry, a, ref, false), 0) << label;
+      // The counting instantiation is a different traversal; check it on part of the grid.
+      if (configs % 7 == 1) {
+        EXPECT_EQ(compare(label, scene.geometry, a, ref, true), 0) << label;
+      }
+    }
+  }
+  EXPECT_GT(configs, 40);
+  EXPECT_LT(over_budget, configs / 4) << "too many builds over the budget to call this a grid";
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, Oracle,
+                         ::testing::Values("uniform", "clustered", "huge_among_tiny", "line",
+                                           "duplicates", "grid", "single", "empty"),
+                         [](const ::testing::TestParamInfo<const char*>& scene) {
+                           return std::string(scene.param);
+                         });
+
+}  // namespace

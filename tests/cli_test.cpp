@@ -1,0 +1,140 @@
+// The accelbench command line, run as a user runs it: sizes, determinism, and one-line errors.
+
+#include "tracer/image.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CliRun {
+  int status = -1;     ///< Exit status.
+  std::string output;  ///< stdout and stderr together.
+};
+
+CliRun accelbench(const std::string& args) {
+  const std::string cmd = std::string(ACCELBENCH_CLI) + " " + args + " 2>&1";
+  CliRun run;
+  FILE* pipe = popen(cmd.c_str(), "r");
+  if (!pipe) return run;
+  std::array<char, 4096> buf;
+  while (std::fgets(buf.data(), int(buf.size()), pipe)) run.output += buf.data();
+  const int raw = pclose(pipe);
+  run.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  return run;
+}
+
+class Cli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("accelbench_cli_test_" + std::to_string(::getpid()));
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  fs::path dir_;
+};
+
+TEST_F(Cli, RefractionSceneRendersAtTheRequestedSizeBitIdenticalOnOneAndTwoThreads) {
+  const std::string scene = path("refraction.json");
+  const CliRun gen = accelbench("gen refraction -o " + scene);
+  ASSERT_EQ(gen.status, 0) << gen.output;
+  const CliRun one =
+      accelbench("render " + scene + " --resolution 48x32 --threads 1 --accel naive -o " +
+                 path("one.png") + " --pfm " + path("one.pfm") + " --stats " + path("one.json"));
+  ASSERT_EQ(one.status, 0) << one.output;
+  const CliRun two = accelbench(
+      "render " + scene + " --resolution 48x32 --threads 2 --accel naive --pfm " + path("two.pfm"));
+  ASSERT_EQ(two.status, 0) << two.output;
+  EXPECT_NE(one.output.find("rays/s"), std::string::npos) << one.output;
+  EXPECT_NE(one.output.find("12 triangles, 288 boxes, 1 plane; 2 lights"), std::string::npos)
+      << one.output;
+
+  const tracer::Image a = tracer::Image::read_pfm(path("one.pfm"));
+  const tracer::Image b = tracer::Image::read_pfm(path("two.pfm"));
+  EXPECT_EQ(a.width(), 48);
+  EXPECT_EQ(a.height(), 32);
+  EXPECT_EQ(a.content_hash(), b.content_hash());
+  EXPECT_TRUE(fs::file_size(path("one.png")) > 100);
+
+  std::ifstream in(path("one.json"));
+  const nlohmann::json stats = nlohmann::json::parse(in);
+  EXPECT_EQ(stats["resolution"], nlohmann::json::array({48, 32}));
+  EXPECT_EQ(stats["accel"], "naive");
+  EXPECT_EQ(stats["image_hash"], tracer::hash_hex(a.content_hash()));
+  EXPECT_EQ(stats["rays"]["eye"], 48 * 32 * 4);
+  EXPECT_GT(stats["traversal"]["prims_tested"].get<double>(), 0.0);
+}
+
+TEST_F(Cli, BadSceneGivesOneLineNamingThePathAndExitsNonZero) {
+  const std::string scene = path("bad.json");
+  std::ofstream(scene) << R"({"materials": [{"name": "m", "type": "diffuse"}],
+                              "spheres": [{"center": [0, 0, 0], "radius": -1, "material": "m"}]})";
+  const CliRun r = accelbench("render " + scene + " -o " + path("x.png"));
+  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(r.output, "accelbench: " + scene + ": /spheres/0/radius: must be > 0, got -1\n");
+}
+
+TEST_F(Cli, BadFlagsGiveOneLineAndExitNonZero) {
+  const std::string scene = path("five.json");
+  ASSERT_EQ(accelbench("gen five -o " + scene).status, 0);
+  const struct {
+    std::string args;
+    std::string message;
+  } cases[] = {
+      {"render " + scene + " --resolution 64",
+       "accelbench: --resolution: expected WIDTHxHEIGHT with each in [1, 65536], e.g. 640x480, got "
+       "'64'\n"},
+      {"render " + scene + " --accel octree2",
+       "accelbench: --accel: unknown structure 'octree2' (known: "},
+      {"render " + scene + " --accel naive --max-depth 3", "accelbench: naive: "},
+      {"render " + scene + " --max-memory 12Q",
+       "accelbench: --max-memory: expected a byte count such as 1000000, 512M or 2G, got '12Q'\n"},
+      {"render " + scene + " -o out.jpg",
+       "accelbench: -o: expected a .png file name, got 'out.jpg'\n"},
+      {"render " + path("missing.json"),
+       "accelbench: " + path("missing.json") + ": cannot open file\n"},
+      {"gen nosuch -o " + path("x.json"),
+       "accelbench: unknown generator 'nosuch' (known: refraction, spheres8000, five, random"},
+      {"gen five --count 3 -o " + path("x.json"),
+       "accelbench: five: takes no count (it has a fixed size)\n"},
+      {"render " + scene + " --threads -2", "accelbench: --threads: "},
+      {"frobnicate", "accelbench: "},
+  };
+  for (const auto& c : cases) {
+    const CliRun r = accelbench(c.args);
+    EXPECT_NE(r.status, 0) << c.args;
+    EXPECT_EQ(r.output.rfind(c.message, 0), 0u) << c.args << "\n got: " << r.output;
+    EXPECT_EQ(r.output.find('\n'), r.output.size() - 1) << "not one line: " << r.output;
+  }
+}
+
+TEST_F(Cli, HelpOnEverySubcommand) {
+  for (const char* sub : {"", "render ", "gen "}) {
+    const CliRun r = accelbench(std::string(sub) + "--help");
+    EXPECT_EQ(r.status, 0) << sub;
+    EXPECT_NE(r.output.find("Usage"), std::string::npos) << sub;
+  }
+}
+
+TEST_F(Cli, RandomGeneratorTakesAnyCountIncludingZero) {
+  const CliRun zero = accelbench("gen random --count 0 -o " + path("r0.json"));
+  ASSERT_EQ(zero.status, 0) << zero.output;
+  EXPECT_NE(zero.output.find("no primitives"), std::string::npos) << zero.output;
+  const CliRun render = accelbench("render " + path("r0.json") + " --resolution 8x8 --accel naive");
+  EXPECT_EQ(render.status, 0) << render.output;
+  const CliRun some = accelbench("gen random --count 123 --seed 9 -o " + path("r1.json"));
+  EXPECT_NE(some.output.find("123 spheres"), std::string::npos) << some.output;
+}
+
+}  // namespace

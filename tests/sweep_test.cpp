@@ -1,0 +1,291 @@
+// The sweep harness: definition parsing and expansion, timing statistics, sharding, the JSON
+// Lines file, and resuming after a real kill of the `accelbench sweep` process.
+
+#include "bench/sweep_definition.h"
+#include "bench/sweep_jsonl.h"
+#include "bench/sweep_stats.h"
+
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace {
+
+using bench::SweepError;
+using nlohmann::json;
+namespace fs = std::filesystem;
+
+std::string parse_error(const json& j) {
+  try {
+    bench::parse_sweep_definition(j);
+  } catch (const SweepError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+json minimal() { return {{"scenes", {"five"}}, {"structures", {"naive"}}}; }
+
+TEST(SweepDefinition, ErrorsNameTheJsonPointer) {
+  struct Case {
+    json patch;  // merged into the minimal definition
+    std::string message;
+  };
+  const std::vector<Case> cases = {
+      {{{"repetitions", 0}}, "/repetitions: must be in [1, 10000], got 0"},
+      {{{"warmup", "1"}}, "/warmup: must be an integer, got \"1\""},
+      {{{"scenes", json::array()}}, "/scenes: must be a non-empty array"},
+      {{{"scenes", {"five", 3}}}, "/scenes/1: a scene must be a string or an object, got 3"},
+      {{{"scenes", {{{"generator", "random"}, {"count", -5}}}}}, "/scenes/0/count: must be in [0, 100000000], got -5"},
+      {{{"scenes", {{{"generator", "random"}, {"file", "x.nff"}}}}},
+       "/scenes/0: a scene needs exactly one of 'generator' or 'file'"},
+      {{{"scenes", {"five", "five"}}}, "/scenes/1: scene name 'five' is used twice; give one a 'name'"},
+      {{{"structures", {"naive", "kdtre"}}}, "/structures/1/name: unknown structure 'kdtre'"},
+      {{{"structures", {{{"name", "kdtree"}, {"max_depth", json::array()}}}}},
+       "/structures/0/max_depth: must list at least one value"},
+      {{{"structures", {{{"name", "kdtree"}, {"leafsize", 4}}}}}, "/structures/0/leafsize: kdtree has no knob 'leafsize'"},
+      {{{"structures", {{{"name", "octree"}, {"max_depth", {4, {{"x", 1}}}}}}}},
+       "/structures/0/max_depth/1: knob value must be a number, string or boolean"},
+      {{{"knobs", {{"leafsize", {1, 2}}}}}, "/knobs/leafsize: no structure in this sweep has the knob 'leafsize'"},
+      {{{"resolution", "64by48"}}, "/resolution: expected WIDTHxHEIGHT"},
+      {{{"colour", 1}}, "/colour: unknown key"},
+  };
+  for (const auto& c : cases) {
+    json j = minimal();
+    j.merge_patch(c.patch);
+    const std::string got = parse_error(j);
+    EXPECT_EQ(got.rfind(c.message, 0), 0u) << "patch " << c.patch.dump() << "\n got: " << got;
+    EXPECT_EQ(got.find('\n'), std::string::npos);
+  }
+}
+
+TEST(SweepDefinition, RoundTripsThroughItsNormalForm) {
+  const json j = {{"name", "t"},
+                  {"scenes", {"five", "random:50", {{"file", "a/b/teapot.nff"}}}},
+                  {"structures", {"naive", {{"name", "kdtree"}, {"split", "sah"}, {"max_leaf_size", {1, 2}}}}},
+                  {"knobs", {{"max_depth", {4, 8}}}},
+                  {"resolution", "32x24"}};
+  const auto d = bench::parse_sweep_definition(j);
+  EXPECT_EQ(d.scenes[1].name, "random-50");
+  EXPECT_EQ(d.scenes[1].count, 50);
+  EXPECT_FALSE(d.scenes[0].count.has_value());
+  EXPECT_EQ(d.scenes[2].name, "teapot");
+  EXPECT_EQ(d.width, 32);
+  const json normal = bench::to_json(d);
+  EXPECT_EQ(bench::to_json(bench::parse_sweep_definition(normal)), normal);
+}
+
+TEST(SweepDefinition, ExpandsKnobsOnlyForStructuresThatHaveThem) {
+  const json j = {{"scenes", {"five", "random:20"}},
+                  {"structures", {"naive", "octree", {{"name", "kdtree"}, {"max_depth", {3}}}}},
+                  {"knobs", {{"max_depth", {4, 8, 12}}, {"max_leaf_size", {1, 2}}}}};
+  const auto configs = bench::expand(bench::parse_sweep_definition(j));
+  std::map<std::string, int> per_structure;
+  std::set<std::string> keys;
+  for (std::size_t i = 0; i < configs.size(); ++i) {
+    EXPECT_EQ(configs[i].index, i);
+    per_structure[configs[i].structure]++;
+    keys.insert(configs[i].key);
+    if (configs[i].structure == "naive") {
+      EXPECT_TRUE(configs[i].params.empty());
+    }
+    if (configs[i].structure == "kdtree") {
+      EXPECT_EQ(configs[i].params["max_depth"], 3);
+    }
+  }
+  EXPECT_EQ(keys.size(), configs.size());
+  EXPECT_EQ(per_structure["naive"], 2);        // once per scene
+  EXPECT_EQ(per_structure["octree"], 2 * 6);   // 3 depths x 2 leaf sizes per scene
+  EXPECT_EQ(per_structure["kdtree"], 2 * 2);   // its own depth x 2 leaf sizes
+  // Scene-major order: all of the first scene's configurations come first.
+  EXPECT_EQ(configs.front().scene, 0u);
+  EXPECT_EQ(configs.back().scene, 1u);
+  EXPECT_TRUE(std::is_sorted(configs.begin(), configs.end(),
+                             [](const auto& a, const auto& b) { return a.scene < b.scene; }));
+}
+
+TEST(SweepDefinition, KeyIsCanonical) {
+  EXPECT_EQ(bench::config_key("s", "kdtree", json{{"max_leaf_size", 2}, {"max_depth", 8}}),
+            bench::config_key("s", "kdtree", json{{"max_depth", 8}, {"max_leaf_size", 2}}));
+  EXPECT_NE(bench::config_key("s", "kdtree", json{{"max_depth", 8}}),
+            bench::config_key("s", "octree", json{{"max_depth", 8}}));
+}
+
+TEST(SweepDefinition, ShardsAreDisjointAndCoverTheSweep) {
+  const json j = {{"scenes", {"five", "random:20", "grid:8"}},
+                  {"structures", {"naive", "octree", "kdtree"}},
+                  {"knobs", {{"max_depth", {2, 4, 6}}, {"max_leaf_size", {1, 3}}}}};
+  const auto all = bench::expand(bench::parse_sweep_definition(j));
+  for (int n : {1, 2, 3, 7, int(all.size()) + 2}) {
+    std::multiset<std::string> seen;
+    for (int i = 0; i < n; ++i) {
+      const auto part = bench::shard(all, i, n);
+      EXPECT_EQ(bench::shard(all, i, n).size(), part.size());  // deterministic
+      for (const auto& c : part) seen.insert(c.key);
+    }
+    EXPECT_EQ(seen.size(), all.size()) << n << " shards";
+    for (const auto& c : all) EXPECT_EQ(seen.count(c.key), 1u);
+  }
+  EXPECT_THROW(bench::parse_shard("3/3"), SweepError);
+  EXPECT_THROW(bench::parse_shard("1"), SweepError);
+  EXPECT_EQ(bench::parse_shard("2/5"), std::make_pair(2, 5));
+}
+
+TEST(SweepStats, MedianQuartilesAndSpread) {
+  const auto s = bench::summarize({5.0, 1.0, 4.0, 2.0, 3.0});
+  EXPECT_DOUBLE_EQ(s.median, 3.0);
+  EXPECT_DOUBLE_EQ(s.min, 1.0);
+  EXPECT_DOUBLE_EQ(s.max, 5.0);
+  EXPECT_DOUBLE_EQ(s.q1, 2.0);
+  EXPECT_DOUBLE_EQ(s.q3, 4.0);
+  EXPECT_DOUBLE_EQ(s.iqr(), 2.0);
+  EXPECT_EQ(s.samples, (std::vector<double>{5.0, 1.0, 4.0, 2.0, 3.0}));  // measurement order kept
+  const auto even = bench::summarize({4.0, 1.0, 3.0, 2.0});
+  EXPECT_DOUBLE_EQ(even.median, 2.5);
+  EXPECT_DOUBLE_EQ(even.q1, 1.75);
+  const auto one = bench::summarize({7.0});
+  EXPECT_DOUBLE_EQ(one.median, 7.0);
+  EXPECT_DOUBLE_EQ(one.iqr(), 0.0);
+}
+
+fs::path temp_dir(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / ("accelbench_" + name + "_" + std::to_string(getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+TEST(SweepJsonl, KeepsCompleteLinesAndDropsATornOne) {
+  const fs::path dir = temp_dir("jsonl");
+  const std::string path = (dir / "rows.jsonl").string();
+  {
+    bench::JsonlWriter w(path, true);
+    w.append({{"kind", "row"}, {"key", "a"}});
+    w.append({{"kind", "row"}, {"key", "b"}});
+  }
+  const auto whole = fs::file_size(path);
+  {
+    std::ofstream out(path, std::ios::app);
+    out << "{\"kind\":\"row\",\"key\":\"c";  // a write cut by a kill
+  }
+  const auto c = bench::read_jsonl(path);
+  ASSERT_EQ(c.records.size(), 2u);
+  EXPECT_EQ(c.records[1]["key"], "b");
+  EXPECT_EQ(c.skipped_lines, 1u);
+  EXPECT_EQ(c.valid_bytes, whole);
+  bench::truncate_file(path, c.valid_bytes);
+  {
+    bench::JsonlWriter w(path, false);
+    w.append({{"kind", "row"}, {"key", "c"}});
+  }
+  const auto after = bench::read_jsonl(path);
+  EXPECT_EQ(after.records.size(), 3u);
+  EXPECT_EQ(after.skipped_lines, 0u);
+  EXPECT_TRUE(bench::read_jsonl((dir / "absent.jsonl").string()).records.empty());
+  fs::remove_all(dir);
+}
+
+/// Runs the CLI with extra environment; returns the raw wait status.
+int run_cli(const std::vector<std::string>& args, const std::vector<std::string>& env_extra) {
+  const pid_t pid = fork();
+  if (pid == 0) {
+    for (const auto& e : env_extra) putenv(const_cast<char*>(e.c_str()));
+    if (!freopen("/dev/null", "w", stderr)) _exit(126);
+    std::vector<char*> argv;
+    std::string exe = ACCELBENCH_CLI;
+    argv.push_back(exe.data());
+    std::vector<std::string> copy = args;
+    for (auto& a : copy) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    execv(exe.c_str(), argv.data());
+    _exit(127);
+  }
+  int status = 0;
+  waitpid(pid, &status, 0);
+  return status;
+}
+
+json read_json(const fs::path& p) {
+  std::ifstream in(p);
+  return json::parse(in);
+}
+
+/// key -> (status, image hash): what a sweep found, without its timings.
+std::map<std::string, std::pair<std::string, std::string>> outcome(const json& results) {
+  std::map<std::string, std::pair<std::string, std::string>> out;
+  for (const auto& r : results["rows"]) out[r["key"]] = {r["status"], r.value("image_hash", "")};
+  return out;
+}
+
+std::vector<std::string> tiny_sweep_args(const fs::path& dir, const std::string& name) {
+  return {"sweep",   "--config", (dir / "tiny.json").string(), "--out", (dir / (name + ".json")).string(),
+          "--quiet"};
+}
+
+void write_tiny_definition(const fs::path& dir) {
+  std::ofstream(dir / "tiny.json") << json{
+      {"name", "tiny"},
+      {"scenes", {"random:30", "grid:8"}},
+      {"structures", {"naive", {{"name", "octree"}, {"max_depth", {1, 3}}, {"max_leaf_size", {0, 2}}}, "kdtree", "bvh"}},
+      {"resolution", "12x9"},
+      {"repetitions", 1},
+      {"warmup", 0}}.dump();
+}
+
+TEST(SweepResume, AKilledRunResumesToTheSameRowsAsAnUninterruptedOne) {
+  const fs::path dir = temp_dir("resume");
+  write_tiny_definition(dir);
+
+  int st = run_cli(tiny_sweep_args(dir, "whole"), {});
+  ASSERT_TRUE(WIFEXITED(st) && WEXITSTATUS(st) == 0) << st;
+  const json whole = read_json(dir / "whole.json");
+  EXPECT_TRUE(whole["complete"].get<bool>());
+  const auto expected = outcome(whole);
+  ASSERT_EQ(expected.size(), 2u * (1 + 4 + 1 + 1));
+  // Leaf size 0 is an invalid knob: a failed row, and the sweep went on.
+  EXPECT_EQ(expected.at(bench::config_key("grid-8", "octree", {{"max_depth", 1}, {"max_leaf_size", 0}})).first,
+            "failed");
+
+  // A real SIGKILL after three rows: no clean-up code runs.
+  st = run_cli(tiny_sweep_args(dir, "killed"), {"ACCELBENCH_SWEEP_KILL_AFTER_ROWS=3"});
+  ASSERT_TRUE(WIFSIGNALED(st) && WTERMSIG(st) == SIGKILL) << st;
+  EXPECT_FALSE(fs::exists(dir / "killed.json"));
+  const auto partial = bench::read_jsonl((dir / "killed.jsonl").string());
+  ASSERT_EQ(partial.records.size(), 1u + 3u);  // header + three rows
+  EXPECT_EQ(partial.skipped_lines, 0u);
+
+  // SIGTERM after two more rows: a clean stop that writes the results so far.
+  auto args = tiny_sweep_args(dir, "killed");
+  args.push_back("--resume");
+  st = run_cli(args, {"ACCELBENCH_SWEEP_KILL_AFTER_ROWS=2", "ACCELBENCH_SWEEP_KILL_SIGNAL=TERM"});
+  ASSERT_TRUE(WIFEXITED(st) && WEXITSTATUS(st) == 130) << st;
+  const json stopped = read_json(dir / "killed.json");
+  EXPECT_FALSE(stopped["complete"].get<bool>());
+  EXPECT_EQ(stopped["rows"].size(), 5u);
+  EXPECT_EQ(stopped["missing"].size(), expected.size() - 5u);
+
+  st = run_cli(args, {});
+  ASSERT_TRUE(WIFEXITED(st) && WEXITSTATUS(st) == 0) << st;
+  const json resumed = read_json(dir / "killed.json");
+  EXPECT_TRUE(resumed["complete"].get<bool>());
+  EXPECT_EQ(outcome(resumed), expected);
+  EXPECT_EQ(resumed["runs"].size(), 2u);  // the killed run wrote no run record
+
+  // --resume refuses a file written by another sweep definition.
+  std::ofstream(dir / "tiny.json") << json{{"name", "tiny"}, {"scenes", {"five"}}, {"structures", {"naive"}}}.dump();
+  st = run_cli(args, {});
+  EXPECT_TRUE(WIFEXITED(st) && WEXITSTATUS(st) != 0) << st;
+  fs::remove_all(dir);
+}
+
+}  // namespace

@@ -1,0 +1,48 @@
+#pragma once
+// How many rays of each kind a render traced; gathered on every render (one add per ray).
+
+#include <nlohmann/json.hpp>
+
+#include <cstdint>
+
+namespace tracer {
+
+struct RayCounts {
+  std::uint64_t eye = 0;         ///< Camera (primary) rays traced.
+  std::uint64_t eye_hits = 0;    ///< Camera rays that hit a primitive.
+  std::uint64_t reflection = 0;  ///< Reflected rays traced (mirrors, dielectrics, TIR).
+  std::uint64_t refraction = 0;  ///< Refracted (transmitted) rays traced.
+  std::uint64_t shadow = 0;      ///< Shadow rays traced towards lights.
+
+  /// Every ray traced, shadow rays included.
+  std::uint64_t total() const { return eye + reflection + refraction + shadow; }
+
+  RayCounts& operator+=(const RayCounts& o) {
+    eye += o.eye;
+    eye_hits += o.eye_hits;
+    reflection += o.reflection;
+    refraction += o.refraction;
+    shadow += o.shadow;
+    return *this;
+  }
+  friend bool operator==(const RayCounts&, const RayCounts&) = default;
+};
+
+inline void to_json(nlohmann::json& j, const RayCounts& c) {
+  j = {{"eye", c.eye},
+       {"eye_hits", c.eye_hits},
+       {"reflection", c.reflection},
+       {"refraction", c.refraction},
+       {"shadow", c.shadow},
+       {"total", c.total()}};
+}
+
+inline void from_json(const nlohmann::json& j, RayCounts& c) {
+  j.at("eye").get_to(c.eye);
+  j.at("eye_hits").get_to(c.eye_hits);
+  j.at("reflection").get_to(c.reflection);
+  j.at("refraction").get_to(c.refraction);
+  j.at("shadow").get_to(c.shadow);
+}
+
+}  // namespace tracer

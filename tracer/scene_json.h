@@ -1,0 +1,28 @@
+#pragma once
+// Scenes as JSON: every key validated, unknown keys rejected, errors as one line that starts
+// with the JSON pointer of the offending value, e.g. `/spheres/12/radius: must be > 0, got -1`.
+// The format is documented key by key in docs/scene-format.md.
+
+#include "scene.h"
+#include "scene_error.h"
+
+#include <nlohmann/json.hpp>
+
+#include <string>
+#include <string_view>
+
+namespace tracer {
+
+/// Builds and validates a scene from parsed JSON; throws SceneError. Meshes are expanded into
+/// triangles, and geometry.finalize() has been called on the result.
+Scene scene_from_json(const nlohmann::json& doc);
+
+/// Parses JSON text and builds the scene; syntax errors also name the JSON pointer where they
+/// occur (and a NaN or Infinity literal is reported as a non-finite number there).
+Scene parse_scene_json(std::string_view text);
+
+/// Every key of the scene, defaults included, as scene_from_json reads it back: load, save and
+/// load again gives an identical scene (floats are written in their shortest exact form).
+nlohmann::json scene_to_json(const Scene& scene);
+
+}  // namespace tracer

@@ -1,0 +1,34 @@
+#include "whitted.h"
+
+namespace tracer {
+
+namespace {
+constexpr float kPi = 3.14159265358979f;
+}
+
+Color beer_transmittance(const Color& absorption, float distance) {
+  Color out(1.0f);
+  for (int c = 0; c < 3; ++c)
+    if (absorption[c] > 0.0f) out[c] = std::exp(-absorption[c] * distance);
+  return out;
+}
+
+Color point_light_irradiance(const PointLight& light, const Vec3& to_light, const Vec3& normal) {
+  const float d2 = glm::dot(to_light, to_light);
+  const float cos_theta = glm::dot(normal, to_light) / std::sqrt(d2);
+  const float intensity = light.power_w / (4.0f * kPi);  // W/sr, emitted uniformly
+  return light.color * (intensity * std::max(cos_theta, 0.0f) / d2);
+}
+
+Color diffuse_phong_brdf(const DirectResponse& r, const Vec3& n, const Vec3& to_light_unit,
+                         const Vec3& to_eye_unit) {
+  Color f = r.albedo / kPi;
+  if (r.specular > 0.0f) {
+    const Vec3 mirrored = reflect(-to_light_unit, n);
+    const float c = std::max(glm::dot(mirrored, to_eye_unit), 0.0f);
+    f += Color(r.specular * (r.shininess + 2.0f) / (2.0f * kPi) * std::pow(c, r.shininess));
+  }
+  return f;
+}
+
+}  // namespace tracer

@@ -1,0 +1,175 @@
+#pragma once
+// Whitted-style recursive ray tracing: point lights with shadow rays, diffuse + Phong, mirrors,
+// and dielectrics that split every ray into a reflected and a refracted one weighted by the
+// Fresnel R and T, with Beer-Lambert absorption inside. Templated on the intersector, so each
+// acceleration structure gets its own compiled copy of the whole recursion.
+
+#include "offset_ray.h"
+#include "optics.h"
+#include "ray_counts.h"
+#include "scene.h"
+#include "surface.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace tracer {
+
+/// Largest channel of a path's throughput: the weight compared against min_weight.
+inline float path_weight(const Color& throughput) {
+  return std::max(throughput.x, std::max(throughput.y, throughput.z));
+}
+
+/// Beer-Lambert transmittance exp(-absorption * distance), per channel; a zero coefficient
+/// transmits fully even over an infinite distance (no 0 * inf).
+Color beer_transmittance(const Color& absorption, float distance);
+
+/// Light arriving at p from one point light, unoccluded, before the BRDF: the radiant intensity
+/// power / (4 pi) times the light's colour, times cos / distance^2. `to_light` = light - p.
+Color point_light_irradiance(const PointLight& light, const Vec3& to_light, const Vec3& normal);
+
+/// Surface response to direct light: a Lambertian albedo and a normalised Phong highlight.
+struct DirectResponse {
+  Color albedo{0.0f};      ///< Lambertian reflectance in [0, 1].
+  float specular = 0.0f;   ///< Weight of the highlight; 0 = none.
+  float shininess = 1.0f;  ///< Phong exponent.
+};
+
+/// The BRDF albedo / pi + specular (s + 2) / (2 pi) cos^s(alpha), where alpha lies between the
+/// light direction mirrored about n and the direction to the eye (all unit vectors).
+Color diffuse_phong_brdf(const DirectResponse& r, const Vec3& n, const Vec3& to_light_unit,
+                         const Vec3& to_eye_unit);
+
+template <class Isect>
+class Whitted {
+ public:
+  /// An integrator over `scene` (which must outlive it) querying geometry through `isect`.
+  Whitted(const Scene& scene, const Isect& isect) : scene_(&scene), isect_(isect) {}
+
+  /// Radiance arriving along a camera ray (unit direction); counts every ray traced.
+  Color trace_eye(const Ray& ray, RayCounts& counts) const {
+    counts.eye++;
+    return trace(ray, 1, Color(1.0f), Color(0.0f), counts);
+  }
+
+ private:
+  /// Radiance along `ray` at recursion depth `depth` (camera ray = 1). `throughput` is the
+  /// path's weight before this ray and `absorption` the Beer coefficient of the medium it
+  /// travels in.
+  Color trace(const Ray& ray, int depth, const Color& throughput, const Color& absorption,
+              RayCounts& counts) const {
+    const Hit hit = isect_.closest(ray);
+    if (!hit.found()) return beer_transmittance(absorption, accel::kInfinity) * scene_->background;
+    if (depth == 1) counts.eye_hits++;
+
+    const Color attenuation = beer_transmittance(absorption, hit.t);
+    const Color weight = throughput * attenuation;
+    const SurfacePoint sp = surface_point(isect_.geometry(), ray, hit);
+    const Material& m = scene_->materials[sp.material];
+    // Normals turned to the side the ray arrives from.
+    const bool front = glm::dot(ray.dir, sp.n_geo) <= 0.0f;
+    const Vec3 n_geo = front ? sp.n_geo : -sp.n_geo;
+    Vec3 n = front ? sp.n_shade : -sp.n_shade;
+    if (glm::dot(n, n_geo) < 0.0f) n = n_geo;  // interpolated normal turned past the surface
+
+    Color radiance(0.0f);
+    switch (m.type) {
+      case MaterialType::Diffuse:
+        radiance = direct(sp.p, n, n_geo, -ray.dir, {m.albedo, m.specular, m.shininess}, counts);
+        break;
+      case MaterialType::Mirror:
+        radiance = spawn(sp.p, n_geo, reflect(ray.dir, n), depth, weight * m.reflectance,
+                         absorption, counts.reflection, counts) *
+                   m.reflectance;
+        break;
+      case MaterialType::Dielectric:
+        radiance =
+            dielectric(ray.dir, sp, n, n_geo, front, m, m.ior, depth, weight, absorption, counts);
+        break;
+      case MaterialType::Nff: {
+        // The classic NFF surface: kd-scaled diffuse + ks-weighted highlight from the lights,
+        // a mirror ray weighted ks, and a refracted ray weighted by the transmittance.
+        radiance = direct(sp.p, n, n_geo, -ray.dir, {m.kd * m.albedo, m.ks, m.shininess}, counts);
+        if (m.ks > 0.0f)
+          radiance += m.ks * spawn(sp.p, n_geo, reflect(ray.dir, n), depth, weight * m.ks,
+                                   absorption, counts.reflection, counts);
+        if (m.transmittance > 0.0f) {
+          const float ior = m.ior > 0.0f ? m.ior : 1.0f;
+          const Interface s = orient(ray.dir, front ? n : -n, ior);
+          Vec3 t;
+          if (refract(ray.dir, s.normal, s.eta_i / s.eta_t, t))
+            radiance += m.transmittance * spawn(sp.p, -n_geo, glm::normalize(t), depth,
+                                                weight * m.transmittance, absorption,
+                                                counts.refraction, counts);
+        }
+        break;
+      }
+    }
+    return attenuation * radiance;
+  }
+
+  /// Traces a secondary ray of direction `dir` from the surface point p, leaving on the side of
+  /// `side` (a unit geometric normal), when the depth and weight limits allow; counts it.
+  Color spawn(const Vec3& p, const Vec3& side, const Vec3& dir, int depth, const Color& weight,
+              const Color& absorption, std::uint64_t& kind_count, RayCounts& counts) const {
+    const RenderSettings& rs = scene_->render;
+    if (depth + 1 > rs.max_depth || !(path_weight(weight) >= rs.min_weight)) return Color(0.0f);
+    Ray r;
+    r.org = offset_ray_origin(p, side);
+    r.dir = dir;
+    kind_count++;
+    return trace(r, depth + 1, weight, absorption, counts);
+  }
+
+  /// Both Fresnel branches of a smooth dielectric. `n`, `n_geo` face the arriving ray.
+  Color dielectric(const Vec3& d, const SurfacePoint& sp, const Vec3& n, const Vec3& n_geo,
+                   bool front, const Material& m, float ior, int depth, const Color& weight,
+                   const Color& absorption, RayCounts& counts) const {
+    // The sign of d.n_outward says whether the ray enters or leaves; leaving uses
+    // eta = ior / 1. The medium beyond the surface is air unless the ray enters.
+    const Interface s = orient(d, front ? n : -n, ior);
+    const Color inside_absorption = m.absorption;
+    const Color beyond = s.entering ? inside_absorption : Color(0.0f);
+    const Color here = absorption;
+    Vec3 t;
+    float reflectance = 1.0f;
+    const bool transmits = refract(d, s.normal, s.eta_i / s.eta_t, t);
+    if (transmits) reflectance = fresnel_dielectric(s.cos_i, s.eta_i, s.eta_t);
+    Color radiance(0.0f);
+    if (reflectance > 0.0f)
+      radiance += reflectance * spawn(sp.p, n_geo, reflect(d, n), depth, weight * reflectance, here,
+                                      counts.reflection, counts);
+    if (transmits && reflectance < 1.0f) {
+      const float tr = 1.0f - reflectance;
+      radiance += tr * spawn(sp.p, -n_geo, glm::normalize(t), depth, weight * tr, beyond,
+                             counts.refraction, counts);
+    }
+    return radiance;
+  }
+
+  /// Direct light from every point light through shadow rays, diffuse + Phong.
+  Color direct(const Vec3& p, const Vec3& n, const Vec3& n_geo, const Vec3& to_eye,
+               const DirectResponse& response, RayCounts& counts) const {
+    Color radiance(0.0f);
+    const Vec3 origin = offset_ray_origin(p, n_geo);
+    for (const PointLight& light : scene_->lights) {
+      const Vec3 to_light = light.position - p;
+      if (!(glm::dot(to_light, n) > 0.0f) || !(glm::dot(to_light, n_geo) > 0.0f)) continue;
+      Ray shadow;
+      shadow.org = origin;
+      shadow.dir = light.position - origin;  // t = 1 at the light
+      shadow.tmax = 1.0f;
+      counts.shadow++;
+      if (isect_.occluded(shadow)) continue;
+      const Vec3 l = glm::normalize(to_light);
+      radiance +=
+          diffuse_phong_brdf(response, n, l, to_eye) * point_light_irradiance(light, to_light, n);
+    }
+    return radiance;
+  }
+
+  const Scene* scene_;
+  Isect isect_;
+};
+
+}  // namespace tracer
