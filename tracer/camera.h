@@ -17,8 +17,10 @@ class PinholeCamera {
   PinholeCamera(const Camera& camera, int width, int height)
       : origin_(camera.position), hither_(camera.hither), width_(width), height_(height) {
     const Vec3 forward = glm::normalize(camera.look_at - camera.position);
-    const Vec3 right = glm::normalize(glm::cross(forward, camera.up));
-    const Vec3 true_up = glm::cross(right, forward);
+    const Vec3 right_rh = glm::normalize(glm::cross(forward, camera.up));
+    const Vec3 true_up = glm::cross(right_rh, forward);
+    // In a left-handed world (NFF, SPD) the image's right is up x view: the film is mirrored.
+    const Vec3 right = camera.left_handed ? -right_rh : right_rh;
     const float half_h = std::tan(0.5f * camera.vfov_deg * 3.14159265358979f / 180.0f);
     const float half_w = half_h * float(width) / float(height);
     forward_ = forward;

@@ -173,6 +173,7 @@ class Parser {
       fail(cmd.line, "'v' resolution must be two integers in [1, 16384]");
     cam.vfov_deg = float(angle);
     cam.hither = float(hither);
+    cam.left_handed = true;  // the SPD's coordinate system is left-handed (SPD README)
     cam.width = int(w);
     cam.height = int(h);
   }

@@ -22,6 +22,7 @@ struct Camera {
   int width = 640;                  ///< Image width, pixels.
   int height = 480;                 ///< Image height, pixels.
   int samples_per_pixel = 1;        ///< Samples per pixel (deterministic stratified jitter when > 1).
+  bool left_handed = false;         ///< World is left-handed (NFF/SPD): image right = up x view.
   float hither = 0.0f;              ///< Near clip distance along the view direction, world units (NFF).
 };
 

@@ -187,6 +187,12 @@ class Object {
   void vec3(std::string_view key, Vec3& out) const {
     if (has(key)) out = read_vec3((*this)[key], path(key));
   }
+  void boolean(std::string_view key, bool& out) const {
+    if (!has(key)) return;
+    const json& v = (*this)[key];
+    if (!v.is_boolean()) fail(path(key), "must be true or false, got " + show(v));
+    out = v.get<bool>();
+  }
   void color(std::string_view key, Color& out, float max = accel::kInfinity) const {
     if (has(key)) out = read_color((*this)[key], path(key), max);
   }
@@ -209,7 +215,8 @@ const std::vector<std::string_view> kTopKeys = {"camera",  "background", "lights
 
 Camera read_camera(const json& v, const std::string& path) {
   const Object o(v, path,
-                 {"position", "look_at", "up", "vfov", "resolution", "samples_per_pixel", "hither"},
+                 {"position", "look_at", "up", "vfov", "resolution", "samples_per_pixel", "hither",
+                  "left_handed"},
                  "camera");
   Camera c;
   o.vec3("position", c.position);
@@ -233,6 +240,7 @@ Camera read_camera(const json& v, const std::string& path) {
            "in [1, 65536]");
   o.number("hither", c.hither);
   o.expect("hither", c.hither >= 0.0f, ">= 0");
+  o.boolean("left_handed", c.left_handed);
   const Vec3 view = c.look_at - c.position;
   if (!(glm::dot(view, view) > 0.0f)) fail(o.path("look_at"), "must differ from position");
   if (!(glm::dot(c.up, c.up) > 0.0f)) fail(o.path("up"), "must be non-zero");
@@ -694,7 +702,8 @@ json scene_to_json(const Scene& scene) {
                  {"vfov", number(c.vfov_deg)},
                  {"resolution", {c.width, c.height}},
                  {"samples_per_pixel", c.samples_per_pixel},
-                 {"hither", number(c.hither)}};
+                 {"hither", number(c.hither)},
+                 {"left_handed", c.left_handed}};
   j["background"] = vec(scene.background);
   j["render"] = {{"max_depth", scene.render.max_depth},
                  {"min_weight", number(scene.render.min_weight)}};
