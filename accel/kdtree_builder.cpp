@@ -8,7 +8,6 @@
 #include "accel.h"
 #include "build_budget.h"
 #include "kdtree_sah.h"
-#include <cstdlib>
 
 #include <algorithm>
 #include <optional>
@@ -74,10 +73,7 @@ class KdTreeBuilder {
     const double area = inv_root_area_ > 0.0 ? double(cell.half_area()) * inv_root_area_
                                              : (depth == 0 ? 1.0 : 0.0);
     stats_.max_depth_reached = std::max(stats_.max_depth_reached, depth);
-    static const int kMode = std::getenv("KD_LEAF") ? std::atoi(std::getenv("KD_LEAF")) : 0;
-    const bool small = n <= std::size_t(params_.max_leaf_size);
-    const bool sah_small = small && params_.split == SplitRule::Sah && kMode && n > 1;
-    if ((small && !sah_small) || depth >= params_.max_depth) {
+    if (n <= std::size_t(params_.max_leaf_size) || depth >= params_.max_depth) {
       make_leaf(node, begin, end, area);
       return;
     }
@@ -85,7 +81,7 @@ class KdTreeBuilder {
     KdSplit split;
     if (params_.split == SplitRule::Sah) {
       const std::span<const std::uint32_t> prims(work_.data() + begin, n);
-      if (!sah_->find(cell, prims, bad_refines, split, side_.data(), sah_small)) {
+      if (!sah_->find(cell, prims, bad_refines, split, side_.data())) {
         make_leaf(node, begin, end, area);
         return;
       }

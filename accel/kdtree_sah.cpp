@@ -14,7 +14,7 @@ KdSahSplitter::KdSahSplitter(std::span<const Aabb> boxes, const KdTreeParams& pa
 }
 
 bool KdSahSplitter::find(const Aabb& cell, std::span<const std::uint32_t> prims,
-                         int& bad_refines, KdSplit& split, std::uint8_t* side, bool strict) {
+                         int& bad_refines, KdSplit& split, std::uint8_t* side) {
   const std::size_t n = prims.size();
   const float total_area = cell.half_area();
   if (!(total_area > 0.0f)) return false;
@@ -75,7 +75,6 @@ bool KdSahSplitter::find(const Aabb& cell, std::span<const std::uint32_t> prims,
     }
   }
 
-  if (strict && !(best_cost < leaf_cost)) return false;
   if (best_cost > leaf_cost) ++bad_refines;
   if ((best_cost > 4.0f * leaf_cost && n < 16) || best_axis == -1 || bad_refines == 3)
     return false;

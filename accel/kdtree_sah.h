@@ -30,7 +30,7 @@ class KdSahSplitter {
   /// false when a leaf is cheaper (pbrt-v3's rule, which allows three splits on a path that
   /// cost more than the leaf they replace, counted in `bad_refines`).
   bool find(const Aabb& cell, std::span<const std::uint32_t> prims, int& bad_refines,
-            KdSplit& split, std::uint8_t* side, bool strict = false);
+            KdSplit& split, std::uint8_t* side);
 
  private:
   /// A primitive box face on one axis: its coordinate, and prim id << 1 | 1 for an upper face.
