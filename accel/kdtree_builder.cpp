@@ -50,8 +50,7 @@ class KdTreeBuilder {
     stats_.primitives = n;
     stats_.nodes = nodes_.size();
     stats_.prim_refs = prim_ids_.size();
-    const std::uint64_t full = stats_.leaves - stats_.empty_leaves;
-    stats_.mean_leaf_prims = full ? double(leaf_prims_) / double(full) : 0.0;
+    leaf_tally_.finish(stats_);
     stats_.memory_bytes = nodes_.size() * sizeof(KdNode) +
                           prim_ids_.size() * sizeof(std::uint32_t) +
                           inner_prims_.size() * sizeof(KdPrimRange);
@@ -152,13 +151,7 @@ class KdTreeBuilder {
     count_leaf(n, area);
   }
 
-  void count_leaf(std::size_t prims, double area) {
-    stats_.leaves++;
-    if (prims == 0) stats_.empty_leaves++;
-    leaf_prims_ += prims;
-    stats_.max_leaf_prims = std::max<std::uint64_t>(stats_.max_leaf_prims, prims);
-    stats_.sah_cost += area * double(prims);
-  }
+  void count_leaf(std::size_t prims, double area) { leaf_tally_.add(stats_, prims, area); }
 
   std::span<const Aabb> boxes_;
   const KdTreeParams& params_;
@@ -172,7 +165,7 @@ class KdTreeBuilder {
   std::vector<std::uint8_t> side_;   ///< Per primitive id: kBelow | kAbove of the current split.
   std::optional<KdSahSplitter> sah_;
   double inv_root_area_ = 0.0;
-  std::uint64_t leaf_prims_ = 0;
+  LeafTally leaf_tally_;
 };
 
 }  // namespace

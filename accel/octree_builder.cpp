@@ -66,8 +66,7 @@ class OctreeBuilder {
     stats_.primitives = n;
     stats_.nodes = nodes_.size();
     stats_.prim_refs = prim_ids_.size();
-    const std::uint64_t full = stats_.leaves - stats_.empty_leaves;
-    stats_.mean_leaf_prims = full ? double(leaf_prims_) / double(full) : 0.0;
+    leaf_tally_.finish(stats_);
     stats_.memory_bytes =
         nodes_.size() * sizeof(OctreeNode) + prim_ids_.size() * sizeof(std::uint32_t);
   }
@@ -167,13 +166,7 @@ class OctreeBuilder {
     return depth == 0 ? 1.0 : 0.0;  // a point-sized scene: only the root counts
   }
 
-  void make_leaf(std::size_t prims, double area) {
-    stats_.leaves++;
-    if (prims == 0) stats_.empty_leaves++;
-    leaf_prims_ += prims;
-    stats_.max_leaf_prims = std::max<std::uint64_t>(stats_.max_leaf_prims, prims);
-    stats_.sah_cost += area * double(prims);
-  }
+  void make_leaf(std::size_t prims, double area) { leaf_tally_.add(stats_, prims, area); }
 
   std::span<const Aabb> boxes_;
   const OctreeParams& params_;
@@ -185,7 +178,7 @@ class OctreeBuilder {
   std::vector<std::uint32_t> refs_, next_refs_;  ///< Their primitive ids.
   std::vector<std::uint8_t> masks_;              ///< Per entry of refs_: children it goes to.
   double inv_root_area_ = 0.0;
-  std::uint64_t leaf_prims_ = 0;
+  LeafTally leaf_tally_;
 };
 
 /// A cube around every box (the root cell), or a point at the origin when there is none.

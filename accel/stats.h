@@ -27,6 +27,28 @@ struct BuildStats {
   }
 };
 
+/// Accumulates the leaf statistics of a tree while it is built; finish() derives the mean.
+class LeafTally {
+ public:
+  /// Records a leaf holding `prims` primitives whose box has `area_fraction` of the root's area
+  /// (its contribution to the SAH cost, intersection cost 1).
+  void add(BuildStats& s, std::uint64_t prims, double area_fraction) {
+    s.leaves++;
+    if (prims == 0) s.empty_leaves++;
+    leaf_prims_ += prims;
+    if (prims > s.max_leaf_prims) s.max_leaf_prims = prims;
+    s.sah_cost += area_fraction * double(prims);
+  }
+  /// Mean primitives over the non-empty leaves.
+  void finish(BuildStats& s) const {
+    const std::uint64_t full = s.leaves - s.empty_leaves;
+    s.mean_leaf_prims = full ? double(leaf_prims_) / double(full) : 0.0;
+  }
+
+ private:
+  std::uint64_t leaf_prims_ = 0;
+};
+
 /// Per-ray work, gathered only in a counting pass (traversal's `Count` template flag).
 struct TraversalCounters {
   std::uint64_t rays = 0;           ///< Queries answered.
