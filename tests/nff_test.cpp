@@ -65,6 +65,7 @@ TEST(Nff, EveryConstruct) {
   EXPECT_EQ(s.camera.up, Vec3(1, 0, 1));
   EXPECT_FLOAT_EQ(s.camera.vfov_deg, 45.0f);
   EXPECT_FLOAT_EQ(s.camera.hither, 0.01f);
+  EXPECT_TRUE(s.camera.left_handed);  // SPD worlds are left-handed (SPD README)
   EXPECT_EQ(s.camera.width, 32);
   EXPECT_EQ(s.camera.height, 16);
 

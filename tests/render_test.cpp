@@ -108,4 +108,28 @@ TEST(Camera, HitherClipsAlongTheViewDirection) {
   EXPECT_NEAR(glm::dot(r.tmin * r.dir, cam.forward()), 2.0f, 1e-5f);
 }
 
+// NFF/SPD worlds are left-handed: the same view then puts world +x on the other side of the
+// film: each film point's ray is the right-handed one mirrored in x, with up and view unchanged.
+TEST(Camera, LeftHandedMirrorsTheFilm) {
+  tracer::Camera c;
+  c.position = {0.0f, 0.0f, 0.0f};
+  c.look_at = {0.0f, 0.0f, 1.0f};
+  c.vfov_deg = 60.0f;
+  tracer::Camera lh = c;
+  lh.left_handed = true;
+  const tracer::PinholeCamera right_handed(c, 64, 32), left_handed(lh, 64, 32);
+  // Looking down +z with +y up, the left-handed image's right is world +x.
+  EXPECT_GT(left_handed.ray_through(64.0f, 16.0f).dir.x, 0.0f);
+  EXPECT_LT(right_handed.ray_through(64.0f, 16.0f).dir.x, 0.0f);
+  for (float px : {0.0f, 10.5f, 32.0f, 63.0f}) {
+    for (float py : {0.0f, 7.25f, 31.0f}) {
+      const Vec3 a = right_handed.ray_through(px, py).dir;
+      const Vec3 b = left_handed.ray_through(px, py).dir;
+      EXPECT_NEAR(a.x, -b.x, 1e-6f);
+      EXPECT_NEAR(a.y, b.y, 1e-6f);
+      EXPECT_NEAR(a.z, b.z, 1e-6f);
+    }
+  }
+}
+
 }  // namespace
