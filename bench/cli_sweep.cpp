@@ -28,7 +28,8 @@ struct SweepFlags {
   std::vector<int> max_depth, leaf_size;
   int repetitions = -1, warmup = -1, threads = -1;
   std::string resolution, out, jsonl, shard_text = "0/1", max_memory;
-  bool resume = false, quiet = false;
+  std::string validate_resolution;
+  bool resume = false, quiet = false, spd = false;
 };
 
 std::vector<nlohmann::json> to_values(const std::vector<int>& v) { return {v.begin(), v.end()}; }
@@ -78,6 +79,10 @@ SweepDefinition definition_from_flags(const SweepFlags& f) {
   if (f.threads >= 0) d.threads = f.threads;
   if (!f.max_memory.empty()) d.max_memory_bytes = parse_bytes(f.max_memory, "--max-memory");
   if (!f.resolution.empty()) std::tie(d.width, d.height) = parse_resolution(f.resolution, "--resolution");
+  if (f.spd) d.mode = RenderMode::Spd;
+  if (!f.validate_resolution.empty())
+    std::tie(d.validate_width, d.validate_height) =
+        parse_resolution(f.validate_resolution, "--validate-resolution");
   // Re-validate the edited definition so flags get the same checks as the file; knobs no swept
   // structure has are dropped from the sweep-wide set rather than rejected.
   std::vector<std::string> known;
@@ -140,6 +145,9 @@ void add_sweep_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--warmup", flags->warmup, "Untimed renders before the timed ones")->check(CLI::Range(0, 10000));
   cmd->add_option("--threads", flags->threads, "Render threads (0 = all cores)")->check(CLI::Range(0, 4096));
   cmd->add_option("--resolution", flags->resolution, "Image size WIDTHxHEIGHT (default: the sweep file's)");
+  cmd->add_flag("--spd", flags->spd, "Render under the SPD test rules (sweep key \"mode\": \"spd\")");
+  cmd->add_option("--validate-resolution", flags->validate_resolution,
+                  "Render naive and check every structure against it at WIDTHxHEIGHT only; no speedups then");
   cmd->add_option("--max-memory", flags->max_memory, "Build memory budget, e.g. 512M or 2G (0 = 25% of RAM)");
   cmd->add_option("--out", flags->out, "Results JSON (default results/<sweep name>.json)");
   cmd->add_option("--jsonl", flags->jsonl, "Row-by-row JSON Lines file (default: --out with .jsonl)");

@@ -151,6 +151,8 @@ std::string join(const std::vector<std::string>& v) {
 
 }  // namespace
 
+const char* mode_name(RenderMode m) { return m == RenderMode::Spd ? "spd" : "whitted"; }
+
 std::pair<int, int> parse_resolution(const std::string& text, const std::string& what) {
   const auto x = text.find('x');
   int w = 0, h = 0;
@@ -204,7 +206,7 @@ std::optional<std::vector<std::string>> structure_knobs(const std::string& struc
 SweepDefinition parse_sweep_definition(const json& j) {
   if (!j.is_object()) fail("", "a sweep definition must be a JSON object");
   require_keys(j, "", {"name", "description", "scenes", "structures", "knobs", "resolution", "threads",
-                       "repetitions", "warmup", "max_memory_bytes"});
+                       "repetitions", "warmup", "max_memory_bytes", "mode", "validate_resolution"});
   SweepDefinition d;
   if (j.contains("name")) {
     d.name = get_string(j["name"], "/name");
@@ -237,6 +239,22 @@ SweepDefinition parse_sweep_definition(const json& j) {
     } else if (!(r.is_number_integer() && r.get<long long>() == 0)) {
       fail("/resolution", "must be \"WIDTHxHEIGHT\" or 0 for each scene's own, got " + r.dump());
     }
+  }
+  if (j.contains("mode")) {
+    const std::string mode = get_string(j["mode"], "/mode");
+    if (mode == "spd") d.mode = RenderMode::Spd;
+    else if (mode != "whitted") fail("/mode", "must be \"whitted\" or \"spd\", got " + j["mode"].dump());
+  }
+  if (j.contains("validate_resolution")) {
+    const json& r = j["validate_resolution"];
+    if (r.is_string()) {
+      std::tie(d.validate_width, d.validate_height) =
+          parse_resolution(r.get<std::string>(), "/validate_resolution");
+    } else if (!(r.is_number_integer() && r.get<long long>() == 0)) {
+      fail("/validate_resolution", "must be \"WIDTHxHEIGHT\" or 0 for the timed resolution, got " + r.dump());
+    }
+    // Validating at the timed resolution is the ordinary sweep: normalise it away.
+    if (d.validate_width == d.width && d.validate_height == d.height) d.validate_width = d.validate_height = 0;
   }
   if (j.contains("threads")) d.threads = int(get_integer(j["threads"], "/threads", 0, 4096));
   if (j.contains("repetitions")) d.repetitions = int(get_integer(j["repetitions"], "/repetitions", 1, 10000));
@@ -311,7 +329,7 @@ json to_json(const SweepDefinition& d) {
     e["name"] = s.name;
     structures.push_back(e);
   }
-  return {{"name", d.name},
+  json j = {{"name", d.name},
           {"description", d.description},
           {"scenes", scenes},
           {"structures", structures},
@@ -321,6 +339,11 @@ json to_json(const SweepDefinition& d) {
           {"repetitions", d.repetitions},
           {"warmup", d.warmup},
           {"max_memory_bytes", d.max_memory_bytes}};
+  // Defaults are left out so that definitions written before these keys existed still match.
+  if (d.mode != RenderMode::Whitted) j["mode"] = mode_name(d.mode);
+  if (d.validates_apart())
+    j["validate_resolution"] = std::to_string(d.validate_width) + "x" + std::to_string(d.validate_height);
+  return j;
 }
 
 std::string config_key(const std::string& scene, const std::string& structure, const json& params) {

@@ -2,9 +2,11 @@
 
 #include "tracer/image.h"
 #include "tracer/render.h"
+#include "tracer/spd_render.h"
 
 #include <chrono>
 #include <new>
+#include <string>
 
 namespace bench {
 namespace {
@@ -13,6 +15,37 @@ using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+/// One render of `scene` with the sweep's renderer.
+tracer::RenderResult render_with(const tracer::Scene& scene, const accel::AnyAccel& built, RenderMode mode,
+                                 int width, int height, int threads, bool counting) {
+  if (mode == RenderMode::Spd) {
+    tracer::SpdOptions o;
+    o.threads = threads;
+    o.count_traversal = counting;
+    o.width = width;
+    o.height = height;
+    return tracer::render_spd(scene, built, o);
+  }
+  tracer::RenderOptions o;
+  o.threads = threads;
+  o.count_traversal = counting;
+  o.width = width;
+  o.height = height;
+  return tracer::render(scene, built, o);
+}
+
+/// The reason a check against naive fails, or "" when hash and ray counts agree.
+std::string mismatch(std::uint64_t hash, const tracer::RayCounts& rays, const Reference& reference,
+                     const std::string& where) {
+  if (hash != reference.image_hash)
+    return "image hash " + tracer::hash_hex(hash) + " differs from naive's " + tracer::hash_hex(reference.image_hash) +
+           where;
+  if (!(rays == reference.rays))
+    return "ray counts " + nlohmann::json(rays).dump() + " differ from naive's " +
+           nlohmann::json(reference.rays).dump() + where;
+  return "";
 }
 
 }  // namespace
@@ -57,16 +90,11 @@ Measurement measure(const tracer::Scene& scene, std::span<const accel::Aabb> box
   m.built_name = accel::name_of(built);
   m.build_stats = accel::stats_of(built);
 
-  tracer::RenderOptions ro;
-  ro.threads = options.threads;
-  ro.width = options.width;
-  ro.height = options.height;
-
   // One timed call of the renderer; the hash of every image must agree with the first.
   auto render_once = [&](bool counting) -> std::optional<double> {
-    ro.count_traversal = counting;
     const auto t0 = Clock::now();
-    tracer::RenderResult r = tracer::render(scene, built, ro);
+    tracer::RenderResult r =
+        render_with(scene, built, options.mode, options.width, options.height, options.threads, counting);
     const double s = seconds_since(t0);
     m.spent_trace_s += s;
     const std::uint64_t h = r.image.content_hash();
@@ -84,12 +112,31 @@ Measurement measure(const tracer::Scene& scene, std::span<const accel::Aabb> box
   };
 
   try {
+    if (options.validate_width > 0) {
+      // The check against naive at the validation resolution, untimed.
+      const auto t0 = Clock::now();
+      const tracer::RenderResult r = render_with(scene, built, options.mode, options.validate_width,
+                                                 options.validate_height, options.threads, false);
+      m.spent_trace_s += seconds_since(t0);
+      m.validation = Validation{options.validate_width, options.validate_height, r.image.content_hash(), r.rays};
+      const std::string at =
+          " at the validation resolution " + std::to_string(options.validate_width) + "x" +
+          std::to_string(options.validate_height);
+      if (reference) {
+        if (std::string why = mismatch(m.validation->image_hash, m.validation->rays, *reference, at); !why.empty()) {
+          m.status = RowStatus::Error;
+          m.reason = why;
+          return m;
+        }
+      }
+    }
     render_once(true);
-    if (reference && m.image_hash != reference->image_hash) {
-      m.status = RowStatus::Error;
-      m.reason = "image hash " + tracer::hash_hex(m.image_hash) + " differs from naive's " +
-                 tracer::hash_hex(reference->image_hash);
-      return m;
+    if (reference && options.validate_width <= 0) {
+      if (std::string why = mismatch(m.image_hash, m.rays, *reference, ""); !why.empty()) {
+        m.status = RowStatus::Error;
+        m.reason = why;
+        return m;
+      }
     }
     for (int i = 0; i < options.warmup; ++i)
       if (!render_once(false)) return m;

@@ -2,6 +2,7 @@
 // Measures one structure with one set of knobs on one scene: a timed build, an untimed counting
 // pass that also yields the image hash, then warm-ups and timed renders.
 
+#include "sweep_definition.h"
 #include "sweep_stats.h"
 
 #include "accel/accel.h"
@@ -35,12 +36,25 @@ struct MeasureOptions {
   int repetitions = 5;           ///< Timed renders.
   int warmup = 1;                ///< Untimed renders before them.
   accel::BuildLimits limits;     ///< Build memory budget.
+  RenderMode mode = RenderMode::Whitted;  ///< Renderer.
+  int validate_width = 0;        ///< Resolution of the check against naive; 0 = the timed one.
+  int validate_height = 0;       ///< Height of that check, pixels.
 };
 
-/// The naive structure's image hash and median render time on the same scene, same run.
+/// The naive structure's image hash, ray counts and median render time on the same scene, same
+/// run, all at one resolution: the timed one, or the validation resolution when set.
 struct Reference {
   std::uint64_t image_hash = 0;   ///< Naive's image hash.
   double render_ms = 0.0;         ///< Naive's median render time, ms.
+  tracer::RayCounts rays;         ///< Rays naive's render traced.
+};
+
+/// A structure's check against naive at the validation resolution (validate_resolution).
+struct Validation {
+  int width = 0;                  ///< Validation width, pixels.
+  int height = 0;                 ///< Validation height, pixels.
+  std::uint64_t image_hash = 0;   ///< The structure's image hash at that resolution.
+  tracer::RayCounts rays;         ///< The structure's ray counts at that resolution.
 };
 
 /// Everything measured for one configuration.
@@ -56,6 +70,7 @@ struct Measurement {
   accel::TraversalCounters traversal;    ///< From the counting pass (not timed).
   tracer::RayCounts rays;                ///< Rays traced by one render.
   std::uint64_t image_hash = 0;          ///< Image hash of the counting pass and every render.
+  std::optional<Validation> validation;  ///< The separate check against naive, when one was made.
   double spent_build_s = 0.0;            ///< Wall time inside make_accel, s (overhead accounting).
   double spent_trace_s = 0.0;            ///< Wall time inside every render call, s (overhead accounting).
 
@@ -64,8 +79,10 @@ struct Measurement {
 };
 
 /// Builds and measures `structure` with `params` on `scene`. Never throws for a bad knob or a
-/// failed build: those become a Failed measurement. With a reference, an image that differs
-/// from naive's is an Error and is not timed.
+/// failed build: those become a Failed measurement. With a reference, an image or ray counts that
+/// differ from naive's are an Error and are not timed. With a validation resolution in `options`,
+/// that comparison is made by a render at that resolution (the reference must be naive's there)
+/// and the timed renders are then made at the timed resolution.
 Measurement measure(const tracer::Scene& scene, std::span<const accel::Aabb> boxes,
                     const std::string& structure, const nlohmann::json& params,
                     const MeasureOptions& options, const std::optional<Reference>& reference);

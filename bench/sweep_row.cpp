@@ -11,6 +11,7 @@ nlohmann::json row_head(const SweepConfig& config, const SceneSpec& scene, const
           {"scene", scene.name},
           {"scene_family", scene.family()},
           {"structure", config.structure},
+          {"mode", mode_name(options.mode)},
           {"requested", config.params},
           {"width", options.width},
           {"height", options.height},
@@ -39,7 +40,22 @@ nlohmann::json make_row(const SweepConfig& config, const SceneSpec& scene, std::
     row["traversal"] = m.traversal;
     row["rays"] = m.rays;
   }
-  if (reference) {
+  // With a validation resolution, naive was rendered and timed only there: its figures belong to
+  // the validation record, and no speedup is claimed against a time taken at another resolution.
+  const bool apart = options.validate_width > 0;
+  if (m.validation) {
+    nlohmann::json v = {{"width", m.validation->width},
+                        {"height", m.validation->height},
+                        {"image_hash", tracer::hash_hex(m.validation->image_hash)},
+                        {"rays", m.validation->rays}};
+    if (reference) {
+      v["naive_image_hash"] = tracer::hash_hex(reference->image_hash);
+      v["naive_rays"] = reference->rays;
+      v["naive_render_ms"] = reference->render_ms;
+    }
+    row["validated_at"] = v;
+  }
+  if (reference && !apart) {
     row["naive_image_hash"] = tracer::hash_hex(reference->image_hash);
     row["naive_render_ms"] = reference->render_ms;
   }
@@ -47,7 +63,12 @@ nlohmann::json make_row(const SweepConfig& config, const SceneSpec& scene, std::
   if (m.status == RowStatus::Ok && m.render_ms) {
     row["render_ms"] = *m.render_ms;
     row["rays_per_s"] = m.rays_per_s();
-    if (reference && m.render_ms->median > 0.0) row["speedup"] = reference->render_ms / m.render_ms->median;
+    if (apart)
+      row["no_speedup_reason"] = "naive was timed only at the validation resolution " +
+                                 std::to_string(options.validate_width) + "x" +
+                                 std::to_string(options.validate_height) + ", not at the timed resolution";
+    else if (reference && m.render_ms->median > 0.0)
+      row["speedup"] = reference->render_ms / m.render_ms->median;
   }
   return row;
 }

@@ -13,7 +13,9 @@
 namespace bench {
 
 /// The row of a measured configuration. Speedup and naive's figures come from `reference`
-/// (naive on the same scene in the same run); they are absent when it is.
+/// (naive on the same scene in the same run); they are absent when it is. With a validation
+/// resolution in `options`, naive's figures go into "validated_at" and the row has no speedup
+/// but a "no_speedup_reason".
 nlohmann::json make_row(const SweepConfig& config, const SceneSpec& scene, std::uint64_t primitives,
                         const MeasureOptions& options, const Measurement& m,
                         const std::optional<Reference>& reference);

@@ -37,6 +37,7 @@ std::optional<Reference> reference_from_row(const json& row) {
   Reference r;
   r.image_hash = std::stoull(row["image_hash"].get<std::string>(), nullptr, 16);
   r.render_ms = row["render_ms"]["median"].get<double>();
+  if (row.contains("rays")) r.rays = row["rays"].get<tracer::RayCounts>();
   return r;
 }
 
@@ -114,6 +115,16 @@ RunSummary run_sweep(const SweepDefinition& definition, const RunOptions& option
   mo.repetitions = definition.repetitions;
   mo.warmup = definition.warmup;
   mo.limits.max_memory_bytes = definition.max_memory_bytes;
+  mo.mode = definition.mode;
+  mo.validate_width = definition.validate_width;
+  mo.validate_height = definition.validate_height;
+  // Naive, the reference, is rendered at the validation resolution when one is set.
+  MeasureOptions naive_mo = mo;
+  if (definition.validates_apart()) {
+    naive_mo.width = definition.validate_width;
+    naive_mo.height = definition.validate_height;
+    naive_mo.validate_width = naive_mo.validate_height = 0;
+  }
 
   install_stop_handlers();
   const std::size_t kill_after = kill_after_rows();
@@ -170,14 +181,14 @@ RunSummary run_sweep(const SweepDefinition& definition, const RunOptions& option
     if (const auto it = done.find(naive_key); it != done.end()) reference = reference_from_row(it->second);
     if (!reference) {
       if (options.progress) std::fprintf(stderr, "sweep: %s: measuring naive, the reference\n", spec.name.c_str());
-      const Measurement naive = measure(*scene, boxes, "naive", json::object(), mo, std::nullopt);
+      const Measurement naive = measure(*scene, boxes, "naive", json::object(), naive_mo, std::nullopt);
       summary.build_s += naive.spent_build_s;
       summary.trace_s += naive.spent_trace_s;
-      if (naive.status == RowStatus::Ok) reference = Reference{naive.image_hash, naive.render_ms->median};
+      if (naive.status == RowStatus::Ok) reference = Reference{naive.image_hash, naive.render_ms->median, naive.rays};
       else no_reference = "no naive reference on this scene: " + naive.reason;
       for (std::size_t i = begin; i < end; ++i)
         if (pending[i].key == naive_key) {
-          emit(make_row(pending[i], spec, primitives, mo, naive, reference), pending[i], describe(naive));
+          emit(make_row(pending[i], spec, primitives, naive_mo, naive, reference), pending[i], describe(naive));
           pending.erase(pending.begin() + std::ptrdiff_t(i));
           --end;
           break;
@@ -193,7 +204,7 @@ RunSummary run_sweep(const SweepDefinition& definition, const RunOptions& option
       summary.build_s += m.spent_build_s;
       summary.trace_s += m.spent_trace_s;
       std::string what = describe(m);
-      if (m.status == RowStatus::Ok && m.render_ms) {
+      if (m.status == RowStatus::Ok && m.render_ms && !definition.validates_apart()) {
         char buf[48];
         std::snprintf(buf, sizeof buf, ", %.2fx naive", reference->render_ms / m.render_ms->median);
         what += buf;

@@ -38,7 +38,7 @@ TuneResult tune(const tracer::Scene& scene, const std::string& structure, const 
   r.structure = structure;
   const Measurement naive = measure(scene, boxes, "naive", json::object(), options.measure, std::nullopt);
   if (naive.status != RowStatus::Ok) throw SweepError("tune: naive reference failed: " + naive.reason);
-  r.naive = Reference{naive.image_hash, naive.render_ms->median};
+  r.naive = Reference{naive.image_hash, naive.render_ms->median, naive.rays};
   if (options.progress)
     std::fprintf(stderr, "tune: naive reference: %.2f ms\n", r.naive.render_ms);
 

@@ -59,6 +59,8 @@ TEST(SweepDefinition, ErrorsNameTheJsonPointer) {
       {{{"knobs", {{"leafsize", {1, 2}}}}}, "/knobs/leafsize: no structure in this sweep has the knob 'leafsize'"},
       {{{"resolution", "64by48"}}, "/resolution: expected WIDTHxHEIGHT"},
       {{{"colour", 1}}, "/colour: unknown key"},
+      {{{"mode", "phong"}}, "/mode: must be \"whitted\" or \"spd\", got \"phong\""},
+      {{{"validate_resolution", "64"}}, "/validate_resolution: expected WIDTHxHEIGHT"},
   };
   for (const auto& c : cases) {
     json j = minimal();
@@ -285,6 +287,86 @@ TEST(SweepResume, AKilledRunResumesToTheSameRowsAsAnUninterruptedOne) {
   std::ofstream(dir / "tiny.json") << json{{"name", "tiny"}, {"scenes", {"five"}}, {"structures", {"naive"}}}.dump();
   st = run_cli(args, {});
   EXPECT_TRUE(WIFEXITED(st) && WEXITSTATUS(st) != 0) << st;
+  fs::remove_all(dir);
+}
+
+/// True when `doc` validates against results/schema/results.schema.json (Python's jsonschema).
+bool valid_against_schema(const json& doc, const fs::path& dir) {
+  std::ofstream(dir / "validate.py") << "import json, sys\nimport jsonschema\n"
+                                        "schema = json.load(open(sys.argv[1]))\n"
+                                        "doc = json.load(open(sys.argv[2]))\n"
+                                        "errors = list(jsonschema.Draft202012Validator(schema).iter_errors(doc))\n"
+                                        "for e in errors[:5]: print(list(e.absolute_path), e.message[:200])\n"
+                                        "sys.exit(1 if errors else 0)\n";
+  std::ofstream(dir / "doc.json") << doc.dump();
+  const std::string cmd = std::string(ACCELBENCH_PYTHON) + " " + (dir / "validate.py").string() + " " +
+                          ACCELBENCH_SOURCE_DIR "/results/schema/results.schema.json " + (dir / "doc.json").string();
+  return std::system(cmd.c_str()) == 0;
+}
+
+TEST(SweepSpd, ValidatesAtAReducedResolutionAndClaimsNoSpeedup) {
+  const fs::path dir = temp_dir("spd");
+  // A tiny NFF scene: three spheres (one reflective) standing on a square polygon.
+  std::ofstream(dir / "tiny.nff") << "b 0.1 0.2 0.5\n"
+                                     "v\nfrom 3 2 2\nat 0 0 0\nup 0 0 1\nangle 45\nhither 0.01\n"
+                                     "resolution 32 32\n"
+                                     "l 4 3 5\nl -3 1 4\n"
+                                     "f 1 0.8 0.6 0.7 0.3 20 0 1\n"
+                                     "p 4\n3 3 -0.5\n-3 3 -0.5\n-3 -3 -0.5\n3 -3 -0.5\n"
+                                     "f 0.9 0.9 0.9 0.5 0.5 3 0 1\n"
+                                     "s 0 0 0 0.5\ns 0.8 0 0 0.25\ns 0 0.8 0 0.25\n";
+  const std::vector<std::string> args = {"sweep", "--config", ACCELBENCH_SOURCE_DIR "/sweeps/quick.json",
+                                         "--scenes", (dir / "tiny.nff").string(), "--accel", "naive,bvh,kdtree",
+                                         "--spd", "--resolution", "24x20", "--validate-resolution", "8x6",
+                                         "--repetitions", "1", "--warmup", "0",
+                                         "--out", (dir / "spd.json").string(), "--quiet"};
+  const int st = run_cli(args, {});
+  ASSERT_TRUE(WIFEXITED(st) && WEXITSTATUS(st) == 0) << st;
+  const json results = read_json(dir / "spd.json");
+  EXPECT_TRUE(results["complete"].get<bool>());
+  EXPECT_EQ(results["sweep"]["mode"], "spd");
+  EXPECT_EQ(results["sweep"]["validate_resolution"], "8x6");
+  std::set<std::string> structures;
+  for (const auto& row : results["rows"]) {
+    EXPECT_EQ(row["status"], "ok") << row.dump();
+    EXPECT_EQ(row["mode"], "spd");
+    structures.insert(row["structure"].get<std::string>());
+    if (row["structure"] == "naive") {
+      // Naive is rendered and timed at the validation resolution only, and its row says so.
+      EXPECT_EQ(row["width"], 8);
+      EXPECT_EQ(row["height"], 6);
+      continue;
+    }
+    EXPECT_EQ(row["width"], 24);
+    EXPECT_EQ(row["height"], 20);
+    ASSERT_TRUE(row.contains("validated_at")) << row.dump();
+    const json& v = row["validated_at"];
+    EXPECT_EQ(v["width"], 8);
+    EXPECT_EQ(v["height"], 6);
+    EXPECT_EQ(v["image_hash"], v["naive_image_hash"]);
+    EXPECT_EQ(v["rays"], v["naive_rays"]);
+    EXPECT_EQ(v["rays"]["eye"], 9 * 7);  // SPD rays at pixel corners
+    EXPECT_EQ(row["rays"]["eye"], 25 * 21);
+    // Naive was not timed at 24x20: no speedup, and the reason.
+    EXPECT_FALSE(row.contains("speedup"));
+    EXPECT_FALSE(row.contains("naive_render_ms"));
+    EXPECT_TRUE(row.contains("no_speedup_reason"));
+  }
+  EXPECT_EQ(structures, (std::set<std::string>{"naive", "bvh", "kdtree"}));
+  EXPECT_TRUE(valid_against_schema(results, dir));
+
+  // A bad mode in a sweep file is refused; the one-line error names the JSON pointer.
+  std::ofstream(dir / "bad.json") << json{{"scenes", {"five"}}, {"structures", {"naive"}}, {"mode", "spd2"}}.dump();
+  const std::string got = [&] {
+    try {
+      bench::load_sweep_file((dir / "bad.json").string());
+    } catch (const SweepError& e) {
+      return std::string(e.what());
+    }
+    return std::string("(no error)");
+  }();
+  EXPECT_NE(got.find("/mode: must be \"whitted\" or \"spd\", got \"spd2\""), std::string::npos) << got;
+  EXPECT_EQ(got.find('\n'), std::string::npos);
   fs::remove_all(dir);
 }
 
