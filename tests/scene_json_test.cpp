@@ -187,6 +187,20 @@ TEST(SceneJson, RoundTripIsExact) {
   EXPECT_EQ(saved["background"][0].dump(), "0.1");
 }
 
+// NFF's negative radius (only the inside visible) survives conversion to JSON and back, while a
+// negative "radius" in JSON stays an error.
+TEST(SceneJson, InsideVisibleSphereRoundTrips) {
+  tracer::Scene a = tracer::scene_from_json(valid_scene());
+  a.geometry.spheres[0].radius = -2.5f;
+  const json saved = tracer::scene_to_json(a);
+  EXPECT_EQ(saved["spheres"][0]["radius"].dump(), "2.5");
+  EXPECT_EQ(saved["spheres"][0]["inside_visible"], true);
+  EXPECT_FALSE(saved["spheres"][1].contains("inside_visible"));
+  const tracer::Scene b = tracer::parse_scene_json(saved.dump());
+  EXPECT_EQ(b.geometry.spheres[0].radius, -2.5f);
+  EXPECT_EQ(b.geometry.spheres[1].radius, a.geometry.spheres[1].radius);
+}
+
 TEST(SceneJson, GeneratedScenesRoundTripThroughFiles) {
   const std::string path =
       (std::filesystem::temp_directory_path() / "accelbench_scene_json_test.json").string();

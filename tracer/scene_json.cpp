@@ -640,11 +640,14 @@ Scene scene_from_json(const json& doc) {
   const MaterialIndex mats(scene.materials);
   Geometry& g = scene.geometry;
   for_each_element(doc, "spheres", [&](const json& v, const std::string& p) {
-    const Object o(v, p, {"center", "radius", "material"}, "sphere");
+    const Object o(v, p, {"center", "radius", "inside_visible", "material"}, "sphere");
     Sphere s;
     s.center = read_vec3(o.require("center"), o.path("center"));
     s.radius = read_float(o.require("radius"), o.path("radius"));
     o.expect("radius", s.radius > 0.0f, "> 0");
+    bool inside_visible = false;
+    o.boolean("inside_visible", inside_visible);
+    if (inside_visible) s.radius = -s.radius;  // NFF's convention, kept in the Sphere
     s.material = mats.lookup(o);
     g.spheres.push_back(s);
   });
@@ -717,9 +720,13 @@ json scene_to_json(const Scene& scene) {
   const Geometry& g = scene.geometry;
   auto mat = [&scene](std::uint32_t i) { return scene.materials.at(i).name; };
   j["spheres"] = json::array();
-  for (const Sphere& s : g.spheres)
-    j["spheres"].push_back(
-        {{"center", vec(s.center)}, {"radius", number(s.radius)}, {"material", mat(s.material)}});
+  for (const Sphere& s : g.spheres) {
+    json sphere = {{"center", vec(s.center)},
+                   {"radius", number(std::abs(s.radius))},
+                   {"material", mat(s.material)}};
+    if (s.radius < 0.0f) sphere["inside_visible"] = true;
+    j["spheres"].push_back(std::move(sphere));
+  }
   j["planes"] = json::array();
   for (const Plane& p : g.planes)
     j["planes"].push_back(
