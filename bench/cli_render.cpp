@@ -73,12 +73,7 @@ nlohmann::json knob_params(const RenderFlags& f) {
 tracer::RenderResult render_with(const RenderFlags& f, const tracer::Scene& scene,
                                  const accel::AnyAccel& structure, const tracer::RenderOptions& o) {
   if (!f.spd) return tracer::render(scene, structure, o);
-  tracer::SpdOptions spd;
-  spd.threads = o.threads;
-  spd.count_traversal = o.count_traversal;
-  spd.width = o.width;
-  spd.height = o.height;
-  return tracer::render_spd(scene, structure, spd);
+  return tracer::render_spd(scene, structure, tracer::SpdOptions(o));
 }
 
 double ms_since(std::chrono::steady_clock::time_point start) {

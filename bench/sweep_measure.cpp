@@ -20,19 +20,12 @@ double seconds_since(Clock::time_point t0) {
 /// One render of `scene` with the sweep's renderer.
 tracer::RenderResult render_with(const tracer::Scene& scene, const accel::AnyAccel& built, RenderMode mode,
                                  int width, int height, int threads, bool counting) {
-  if (mode == RenderMode::Spd) {
-    tracer::SpdOptions o;
-    o.threads = threads;
-    o.count_traversal = counting;
-    o.width = width;
-    o.height = height;
-    return tracer::render_spd(scene, built, o);
-  }
   tracer::RenderOptions o;
   o.threads = threads;
   o.count_traversal = counting;
   o.width = width;
   o.height = height;
+  if (mode == RenderMode::Spd) return tracer::render_spd(scene, built, tracer::SpdOptions(o));
   return tracer::render(scene, built, o);
 }
 

@@ -33,12 +33,13 @@ struct PixelWindow {
   int y1 = -1;  ///< One past the last row, pixels; < 0: the image height.
 };
 
-struct SpdOptions {
-  int threads = 0;                ///< Worker threads; 0 = every hardware thread.
-  bool count_traversal = false;   ///< Gather traversal counters (compiles the counting path).
+/// The Whitted render's options (threads, counting, size; 0 = the camera's NFF resolution),
+/// plus a window of the image.
+struct SpdOptions : RenderOptions {
   PixelWindow window;             ///< Part of the camera's image to render; default: all of it.
-  int width = 0;                  ///< Image width, pixels; 0 = the camera's (NFF resolution).
-  int height = 0;                 ///< Image height, pixels; 0 = the camera's.
+
+  SpdOptions() = default;
+  explicit SpdOptions(const RenderOptions& base) : RenderOptions(base) {}
 };
 
 /// Renders `scene` through the built structure `accel` under the SPD rules. The image and the
