@@ -26,6 +26,9 @@ int run(const MergeFlags& f) {
   const auto& missing = merged["missing"];
   std::fprintf(stderr, "merge: wrote %s: %zu rows from %zu files\n", f.out.c_str(), merged["rows"].size(),
                docs.size());
+  if (merged.contains("mixed_hardware"))
+    std::fprintf(stderr, "merge: warning: %s\n",
+                 merged["mixed_hardware"]["warning"].get<std::string>().c_str());
   if (!missing.empty()) {
     std::fprintf(stderr, "merge: %zu configuration(s) missing, e.g. %s\n", missing.size(),
                  missing[0].get<std::string>().c_str());

@@ -118,6 +118,8 @@ int run(const SweepFlags& f) {
                "wall %.1f s, build %.1f s, trace %.1f s, harness overhead %.2f%%\n",
                s.interrupted ? "interrupted, wrote" : "wrote", o.out_path.c_str(), s.already_done + s.measured,
                s.shard_configs, s.measured, s.not_ok, s.wall_s, s.build_s, s.trace_s, 100.0 * s.harness_fraction());
+  if (!s.hardware_warning.empty())
+    std::fprintf(stderr, "sweep: warning: %s\n", s.hardware_warning.c_str());
   if (s.interrupted) {
     std::fprintf(stderr, "sweep: continue with the same flags and --resume\n");
     return 130;

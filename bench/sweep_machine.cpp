@@ -3,13 +3,17 @@
 #include <sys/utsname.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cstdio>
 #include <ctime>
 #include <fstream>
 #include <memory>
+#include <set>
 #include <thread>
+#include <tuple>
+#include <vector>
 
 // Set by bench/CMakeLists.txt; the fallbacks keep the file compilable on its own.
 #ifndef ACCELBENCH_GIT_COMMIT
@@ -92,6 +96,58 @@ nlohmann::json machine_info() {
           {"git_commit", now.empty() ? built : now},
           {"git_commit_at_build", built},
           {"date", utc_now_iso8601()}};
+}
+
+namespace {
+
+/// A string field of a machine description, `otherwise` when absent or not a string.
+std::string text_field(const nlohmann::json& machine, const char* key,
+                       const std::string& otherwise) {
+  if (!machine.is_object() || !machine.contains(key) || !machine[key].is_string()) return otherwise;
+  return machine[key].get<std::string>();
+}
+
+/// The core count of a machine description, -1 when absent or not an integer.
+long long cores_field(const nlohmann::json& machine) {
+  if (!machine.is_object() || !machine.contains("cores") || !machine["cores"].is_number_integer())
+    return -1;
+  return machine["cores"].get<long long>();
+}
+
+}  // namespace
+
+std::string node_name(const nlohmann::json& machine) {
+  return text_field(machine, "hostname", "");
+}
+
+nlohmann::json distinct_machines(const nlohmann::json& machines) {
+  nlohmann::json out = nlohmann::json::array();
+  std::set<std::tuple<std::string, std::string, long long>> seen;
+  for (const auto& m : machines)
+    if (seen.emplace(node_name(m), text_field(m, "cpu_model", "unknown"), cores_field(m)).second)
+      out.push_back(m);
+  return out;
+}
+
+nlohmann::json mixed_hardware(const nlohmann::json& machines) {
+  std::vector<std::string> models;
+  std::vector<long long> cores;
+  for (const auto& m : machines) {
+    const std::string model = text_field(m, "cpu_model", "unknown");
+    const long long n = cores_field(m);
+    if (std::find(models.begin(), models.end(), model) == models.end()) models.push_back(model);
+    if (std::find(cores.begin(), cores.end(), n) == cores.end()) cores.push_back(n);
+  }
+  if (models.size() < 2 && cores.size() < 2) return nullptr;
+  std::string list_models, list_cores;
+  for (const auto& m : models) list_models += (list_models.empty() ? "" : "; ") + m;
+  for (const auto n : cores) list_cores += (list_cores.empty() ? "" : ", ") + std::to_string(n);
+  return {{"cpu_models", models},
+          {"cores", cores},
+          {"warning", "rows were measured on different hardware (CPU models: " + list_models +
+                          "; core counts: " + list_cores +
+                          "): compare render times and speedups only between rows of one machine "
+                          "(each row's node; merged_from and machines give each node's CPU)"}};
 }
 
 }  // namespace bench

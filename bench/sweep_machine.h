@@ -14,4 +14,20 @@ nlohmann::json machine_info();
 /// The current time as ISO 8601 UTC, e.g. "2026-11-22T12:43:30Z".
 std::string utc_now_iso8601();
 
+/// The node a machine description names (its hostname); "" when it records none.
+std::string node_name(const nlohmann::json& machine);
+
+/// The machines of `machines` that differ in node, CPU model or core count, first seen first.
+nlohmann::json distinct_machines(const nlohmann::json& machines);
+
+/// When `machines` span more than one CPU model or core count: {"cpu_models": [...], "cores":
+/// [...], "warning": one line}; otherwise null.
+nlohmann::json mixed_hardware(const nlohmann::json& machines);
+
+/// How every speedup in a results file is formed; written into each results file.
+inline constexpr const char* kSpeedupBasis =
+    "speedup = naive_render_ms / render_ms.median, both medians measured in the same shard on the "
+    "same "
+    "node (a shard resumed on another node measures naive again there); never a ratio across nodes";
+
 }  // namespace bench

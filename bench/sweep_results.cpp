@@ -1,5 +1,7 @@
 #include "sweep_results.h"
 
+#include "sweep_machine.h"
+
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
@@ -16,16 +18,26 @@ json strip_kind(json record) {
   return record;
 }
 
+/// Records which machines measured the rows of `doc`, when more than one did.
+void add_machines(json& doc, const json& machines) {
+  const json distinct = distinct_machines(machines);
+  if (distinct.size() > 1) doc["machines"] = distinct;
+  if (json mixed = mixed_hardware(distinct); !mixed.is_null())
+    doc["mixed_hardware"] = std::move(mixed);
+}
+
 }  // namespace
 
 json assemble_results(const std::vector<json>& records, const json& machine, const SweepDefinition& definition,
                       int shard_index, int shard_count, const std::vector<SweepConfig>& expected) {
   std::map<std::size_t, json> rows;  // by index: ordered, first record of a key wins
   std::set<std::string> keys;
-  json runs = json::array();
+  json runs = json::array(), machines = json::array({machine});
   for (const auto& r : records) {
     const std::string kind = r.value("kind", "");
-    if (kind == kRowKind) {
+    if (kind == kResumeKind) {
+      machines.push_back(r.value("machine", json()));
+    } else if (kind == kRowKind) {
       const std::string key = r.value("key", "");
       if (keys.insert(key).second) rows.emplace(r.value("index", std::size_t(0)), strip_kind(r));
     } else if (kind == kRunKind) {
@@ -37,15 +49,18 @@ json assemble_results(const std::vector<json>& records, const json& machine, con
     if (!keys.count(c.key)) missing.push_back(c.key);
   json row_list = json::array();
   for (auto& [index, row] : rows) row_list.push_back(std::move(row));
-  return {{"format", kResultsFormat},
-          {"version", kResultsVersion},
-          {"machine", machine},
-          {"sweep", to_json(definition)},
-          {"shard", {{"index", shard_index}, {"count", shard_count}}},
-          {"complete", missing.empty()},
-          {"missing", missing},
-          {"runs", runs},
-          {"rows", row_list}};
+  json doc = {{"format", kResultsFormat},
+              {"version", kResultsVersion},
+              {"machine", machine},
+              {"sweep", to_json(definition)},
+              {"shard", {{"index", shard_index}, {"count", shard_count}}},
+              {"complete", missing.empty()},
+              {"missing", missing},
+              {"speedup_basis", kSpeedupBasis},
+              {"runs", runs},
+              {"rows", row_list}};
+  add_machines(doc, machines);
+  return doc;
 }
 
 void write_json_atomic(const std::string& path, const json& doc) {
@@ -93,7 +108,7 @@ json merge_results(const std::vector<std::pair<std::string, json>>& inputs) {
   }
   std::map<std::string, std::string> owner;  // key -> file
   std::map<std::size_t, json> rows;
-  json runs = json::array(), merged_from = json::array();
+  json runs = json::array(), merged_from = json::array(), machines = json::array();
   for (const auto& [path, doc] : inputs) {
     if (doc["sweep"] != first["sweep"])
       throw SweepError(path + ": /sweep: differs from " + inputs.front().first + "'s sweep definition");
@@ -108,22 +123,28 @@ json merge_results(const std::vector<std::pair<std::string, json>>& inputs) {
     }
     for (const auto& r : doc.value("runs", json::array())) runs.push_back(r);
     merged_from.push_back({{"file", path}, {"shard", doc.value("shard", json())}, {"machine", doc["machine"]}});
+    machines.push_back(doc["machine"]);
+    if (doc.contains("machines") && doc["machines"].is_array())
+      for (const auto& m : doc["machines"]) machines.push_back(m);
   }
   json missing = json::array();
   for (const auto& c : expand(definition))
     if (!owner.count(c.key)) missing.push_back(c.key);
   json row_list = json::array();
   for (auto& [index, row] : rows) row_list.push_back(std::move(row));
-  return {{"format", kResultsFormat},
-          {"version", kResultsVersion},
-          {"machine", first["machine"]},
-          {"sweep", first["sweep"]},
-          {"shard", {{"index", 0}, {"count", 1}}},
-          {"complete", missing.empty()},
-          {"missing", missing},
-          {"runs", runs},
-          {"merged_from", merged_from},
-          {"rows", row_list}};
+  json doc = {{"format", kResultsFormat},
+              {"version", kResultsVersion},
+              {"machine", first["machine"]},
+              {"sweep", first["sweep"]},
+              {"shard", {{"index", 0}, {"count", 1}}},
+              {"complete", missing.empty()},
+              {"missing", missing},
+              {"speedup_basis", kSpeedupBasis},
+              {"runs", runs},
+              {"merged_from", merged_from},
+              {"rows", row_list}};
+  add_machines(doc, machines);
+  return doc;
 }
 
 }  // namespace bench

@@ -20,9 +20,13 @@ inline constexpr int kResultsVersion = 1;
 inline constexpr const char* kHeaderKind = "header";
 inline constexpr const char* kRowKind = "row";
 inline constexpr const char* kRunKind = "run";
+/// Written when a run resumes a file: the machine it resumed on.
+inline constexpr const char* kResumeKind = "resume";
 
-/// The results document of one shard from its JSON Lines records (a header, rows, run records).
-/// `expected` lists the shard's configurations; rows are ordered by index, repeats dropped.
+/// The results document of one shard from its JSON Lines records (a header, rows, run and resume
+/// records). `expected` lists the shard's configurations; rows are ordered by index, repeats
+/// dropped. `machine` is the header's; resumes on other nodes add "machines" and, on other
+/// hardware, "mixed_hardware".
 nlohmann::json assemble_results(const std::vector<nlohmann::json>& records, const nlohmann::json& machine,
                                 const SweepDefinition& definition, int shard_index, int shard_count,
                                 const std::vector<SweepConfig>& expected);
@@ -35,7 +39,9 @@ void write_json_atomic(const std::string& path, const nlohmann::json& doc);
 nlohmann::json read_results_file(const std::string& path);
 
 /// Joins shards (path, document): same sweep definition, no configuration twice (SweepError
-/// otherwise). The merged document's "missing" lists configurations no input holds.
+/// otherwise). The merged document's "missing" lists configurations no input holds; "machines"
+/// lists the inputs' distinct machines when there are several, and "mixed_hardware" says when
+/// they differ in CPU model or core count.
 nlohmann::json merge_results(const std::vector<std::pair<std::string, nlohmann::json>>& inputs);
 
 }  // namespace bench

@@ -87,18 +87,26 @@ RunSummary run_sweep(const SweepDefinition& definition, const RunOptions& option
   if (options.resume) records = resume_records(options.jsonl_path, definition_json, shard_json);
   const bool fresh = records.empty();
   JsonlWriter writer(options.jsonl_path, fresh);
-  json machine;
+  const json here = machine_info();
+  const std::string node = node_name(here);
+  json machine;  // the header's: the machine of the first run
   if (fresh) {
-    machine = machine_info();
+    machine = here;
     json header = {{"kind", kHeaderKind}, {"format", "accelbench-sweep-jsonl"}, {"version", kResultsVersion},
                    {"sweep", definition_json}, {"shard", shard_json}, {"machine", machine}};
     writer.append(header);
   } else {
     machine = records.front()["machine"];
+    writer.append({{"kind", kResumeKind}, {"machine", here}});
   }
   std::map<std::string, json> done;
   for (const auto& r : records)
     if (r.value("kind", "") == kRowKind) done.emplace(r.value("key", ""), r);
+  // The node that measured a row: its own record, else (rows of older files) the header's.
+  auto measured_on = [&](const json& row) {
+    return row.contains("node") && row["node"].is_string() ? row["node"].get<std::string>()
+                                                           : node_name(machine);
+  };
 
   std::vector<SweepConfig> pending;
   for (const auto& c : mine)
@@ -107,6 +115,11 @@ RunSummary run_sweep(const SweepDefinition& definition, const RunOptions& option
   if (options.progress && summary.already_done)
     std::fprintf(stderr, "sweep: resuming: %zu of %zu configurations already done\n", summary.already_done,
                  mine.size());
+  if (!fresh && node != node_name(machine))
+    std::fprintf(
+        stderr,
+        "sweep: resuming on node %s, started on %s: naive is measured again here for speedups\n",
+        node.c_str(), node_name(machine).c_str());
 
   MeasureOptions mo;
   mo.width = definition.width;
@@ -132,6 +145,7 @@ RunSummary run_sweep(const SweepDefinition& definition, const RunOptions& option
 
   auto emit = [&](json row, const SweepConfig& c, const std::string& what) {
     row["kind"] = kRowKind;
+    row["node"] = node;
     writer.append(row);
     summary.measured++;
     if (row.value("status", "") != "ok") summary.not_ok++;
@@ -173,12 +187,14 @@ RunSummary run_sweep(const SweepDefinition& definition, const RunOptions& option
     const std::vector<accel::Aabb> boxes = scene->geometry.primitive_bounds();
     const std::uint64_t primitives = boxes.size();
 
-    // The reference: naive on this scene, from an earlier row, this shard's naive row, or a
-    // measurement made only for validation and speedups.
+    // The reference: naive on this scene, from an earlier row measured on this node, this
+    // shard's naive row, or a measurement made only for validation and speedups. A speedup is
+    // never a ratio of times from two nodes: resumed on another node, naive is measured again.
     const std::string naive_key = config_key(spec.name, "naive", json::object());
     std::optional<Reference> reference;
     std::string no_reference;
-    if (const auto it = done.find(naive_key); it != done.end()) reference = reference_from_row(it->second);
+    if (const auto it = done.find(naive_key); it != done.end() && measured_on(it->second) == node)
+      reference = reference_from_row(it->second);
     if (!reference) {
       if (options.progress) std::fprintf(stderr, "sweep: %s: measuring naive, the reference\n", spec.name.c_str());
       const Measurement naive = measure(*scene, boxes, "naive", json::object(), naive_mo, std::nullopt);
@@ -230,6 +246,8 @@ RunSummary run_sweep(const SweepDefinition& definition, const RunOptions& option
   const json results = assemble_results(read_jsonl(options.jsonl_path).records, machine, definition,
                                         options.shard_index, options.shard_count, mine);
   summary.complete = results["complete"].get<bool>();
+  if (results.contains("mixed_hardware"))
+    summary.hardware_warning = results["mixed_hardware"]["warning"];
   write_json_atomic(options.out_path, results);
   return summary;
 }

@@ -30,6 +30,7 @@ struct RunSummary {
   double trace_s = 0.0;            ///< Time inside render calls (timed, warm-up, counting), s.
   bool interrupted = false;        ///< Stopped early by SIGINT/SIGTERM.
   bool complete = false;           ///< The results file holds every configuration of the shard.
+  std::string hardware_warning;  ///< Set when the shard's rows were measured on different hardware.
 
   /// Harness overhead: wall time outside builds and renders, as a fraction of wall time.
   double harness_fraction() const { return wall_s > 0 ? (wall_s - build_s - trace_s) / wall_s : 0.0; }

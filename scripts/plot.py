@@ -68,6 +68,8 @@ def load_rows(paths):
         if not isinstance(doc, dict) or doc.get("format") != "accelbench-results":
             raise PlotError(f"{path}: /format: not an accelbench results file")
         machines.append(doc.get("machine", {}))
+        if "mixed_hardware" in doc:  # set by accelbench sweep/merge: rows from different CPUs
+            print(f"plot: warning: {path}: {doc['mixed_hardware'].get('warning', 'mixed hardware')}", file=sys.stderr)
         for row in doc.get("rows", []):
             row = dict(row)
             row["_sweep"] = doc.get("sweep", {}).get("name", os.path.basename(path))

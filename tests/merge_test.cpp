@@ -1,7 +1,9 @@
 // `accelbench merge`: shards of a sweep join into exactly the whole sweep; a repeated
-// configuration or another sweep's file is refused; a missing shard is reported.
+// configuration or another sweep's file is refused; a missing shard is reported; shards from
+// different hardware are recorded and flagged.
 
 #include "bench/sweep_definition.h"
+#include "bench/sweep_machine.h"
 #include "bench/sweep_results.h"
 #include "bench/sweep_runner.h"
 
@@ -9,7 +11,10 @@
 
 #include <unistd.h>
 
+#include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <set>
 #include <string>
 #include <vector>
@@ -117,6 +122,63 @@ TEST_F(MergeTest, RefusesShardsOfAnotherSweep) {
   } catch (const bench::SweepError& e) {
     EXPECT_EQ(std::string(e.what()), "b.json: /sweep: differs from a.json's sweep definition");
   }
+}
+
+TEST_F(MergeTest, RecordsAndWarnsWhenShardsRanOnDifferentHardware) {
+  const auto d = tiny();
+  const json a = run(d, 0, 2), b = run(d, 1, 2);
+  const json merged = bench::merge_results({{"a", a}, {"b", b}});
+  EXPECT_FALSE(merged.contains("mixed_hardware"));
+  EXPECT_FALSE(merged.contains("machines"));
+  EXPECT_EQ(merged["speedup_basis"], bench::kSpeedupBasis);
+
+  // Another node of the same hardware: both machines are recorded, nothing is mixed.
+  json other_node = b;
+  other_node["machine"]["hostname"] = "node-b";
+  json m = bench::merge_results({{"a", a}, {"b", other_node}});
+  ASSERT_TRUE(m.contains("machines"));
+  EXPECT_EQ(m["machines"].size(), 2u);
+  EXPECT_FALSE(m.contains("mixed_hardware"));
+
+  // Another core count, then another CPU model: flagged, with both values.
+  json other_cores = other_node;
+  other_cores["machine"]["cores"] = a["machine"]["cores"].get<int>() + 62;
+  m = bench::merge_results({{"a", a}, {"b", other_cores}});
+  ASSERT_TRUE(m.contains("mixed_hardware"));
+  EXPECT_EQ(m["mixed_hardware"]["cores"],
+            json::array({a["machine"]["cores"], other_cores["machine"]["cores"]}));
+  EXPECT_EQ(m["mixed_hardware"]["cpu_models"].size(), 1u);
+
+  json other_cpu = other_node;
+  other_cpu["machine"]["cpu_model"] = "Other CPU @ 1.0GHz";
+  m = bench::merge_results({{"a", a}, {"b", other_cpu}});
+  ASSERT_TRUE(m.contains("mixed_hardware"));
+  EXPECT_EQ(m["mixed_hardware"]["cpu_models"],
+            json::array({a["machine"]["cpu_model"], "Other CPU @ 1.0GHz"}));
+  EXPECT_NE(m["mixed_hardware"]["warning"].get<std::string>().find("Other CPU @ 1.0GHz"),
+            std::string::npos);
+  // merged_from still tells which shard ran where.
+  EXPECT_EQ(m["merged_from"][1]["machine"]["cpu_model"], "Other CPU @ 1.0GHz");
+
+  // A shard that was itself resumed on other hardware carries both machines; merge sees them.
+  json resumed = b;
+  resumed["machines"] = json::array({b["machine"], other_cpu["machine"]});
+  m = bench::merge_results({{"a", a}, {"b", resumed}});
+  EXPECT_TRUE(m.contains("mixed_hardware"));
+
+  // The command line says so on stderr and exits 0 (the merge itself is complete).
+  std::ofstream(dir_ / "a.json") << a.dump();
+  std::ofstream(dir_ / "b.json") << other_cpu.dump();
+  const std::string cmd = std::string(ACCELBENCH_CLI) + " merge " + (dir_ / "a.json").string() +
+                          " " + (dir_ / "b.json").string() + " -o " + (dir_ / "m.json").string() +
+                          " 2> " + (dir_ / "err.txt").string();
+  ASSERT_EQ(std::system(cmd.c_str()), 0);
+  std::ifstream err_in(dir_ / "err.txt");
+  const std::string err((std::istreambuf_iterator<char>(err_in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(err.find("merge: warning: rows were measured on different hardware"), std::string::npos)
+      << err;
+  EXPECT_NE(err.find("Other CPU @ 1.0GHz"), std::string::npos) << err;
+  EXPECT_TRUE(bench::read_results_file((dir_ / "m.json").string()).contains("mixed_hardware"));
 }
 
 }  // namespace

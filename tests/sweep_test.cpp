@@ -3,6 +3,7 @@
 
 #include "bench/sweep_definition.h"
 #include "bench/sweep_jsonl.h"
+#include "bench/sweep_machine.h"
 #include "bench/sweep_stats.h"
 
 #include <gtest/gtest.h>
@@ -302,6 +303,96 @@ bool valid_against_schema(const json& doc, const fs::path& dir) {
   const std::string cmd = std::string(ACCELBENCH_PYTHON) + " " + (dir / "validate.py").string() + " " +
                           ACCELBENCH_SOURCE_DIR "/results/schema/results.schema.json " + (dir / "doc.json").string();
   return std::system(cmd.c_str()) == 0;
+}
+
+/// Rewrites every record of a JSON Lines file through `edit`.
+template <class Edit>
+void edit_jsonl(const fs::path& path, Edit edit) {
+  auto contents = bench::read_jsonl(path.string());
+  std::ofstream out(path, std::ios::trunc);
+  for (auto& r : contents.records) {
+    edit(r);
+    out << r.dump() << "\n";
+  }
+}
+
+/// The first `rows` rows of the tiny sweep, killed after them, as if measured on `node` with a
+/// CPU and core count of its own, and naive's median render time replaced by an impossible 1e9 ms
+/// (a reused naive row then shows in every later row's naive_render_ms).
+void killed_on(const fs::path& dir, const std::string& name, std::size_t rows,
+               const std::string& node) {
+  const int st = run_cli(tiny_sweep_args(dir, name),
+                         {"ACCELBENCH_SWEEP_KILL_AFTER_ROWS=" + std::to_string(rows)});
+  ASSERT_TRUE(WIFSIGNALED(st) && WTERMSIG(st) == SIGKILL) << st;
+  edit_jsonl(dir / (name + ".jsonl"), [&](json& r) {
+    if (r["kind"] == "header" && !node.empty())
+      r["machine"].update(
+          {{"hostname", node}, {"cpu_model", "Other CPU @ 1.0GHz"}, {"cores", 1234}});
+    if (r["kind"] != "row") return;
+    if (!node.empty()) r["node"] = node;
+    if (r["structure"] == "naive") r["render_ms"]["median"] = 1e9;
+  });
+}
+
+TEST(SweepResume, OnAnotherNodeMeasuresNaiveAgainAndRecordsBothMachines) {
+  const fs::path dir = temp_dir("resume_node");
+  write_tiny_definition(dir);
+  const std::string here = bench::node_name(bench::machine_info());
+  ASSERT_FALSE(here.empty());
+  ASSERT_NE(here, "node-a");
+  const std::string first_scene_naive = bench::config_key("random-30", "naive", json::object());
+
+  // Resumed on the node that measured naive: its row is the reference (the 1e9 shows through).
+  killed_on(dir, "same", 3, "");
+  auto args = tiny_sweep_args(dir, "same");
+  args.push_back("--resume");
+  int st = run_cli(args, {});
+  ASSERT_TRUE(WIFEXITED(st) && WEXITSTATUS(st) == 0) << st;
+  const json same = read_json(dir / "same.json");
+  std::size_t reused = 0;
+  for (const auto& r : same["rows"])
+    if (r["scene"] == "random-30" && r["index"] >= 3 && r.contains("naive_render_ms")) {
+      EXPECT_EQ(r["node"], here);
+      EXPECT_EQ(r["naive_render_ms"], 1e9) << r["key"];
+      ++reused;
+    }
+  EXPECT_GE(reused, 3u);
+  EXPECT_FALSE(same.contains("machines"));
+  EXPECT_FALSE(same.contains("mixed_hardware"));
+
+  // Resumed on another node with another CPU: naive is measured again here, and the results
+  // file names both machines and flags the mixed hardware.
+  killed_on(dir, "moved", 3, "node-a");
+  args = tiny_sweep_args(dir, "moved");
+  args.push_back("--resume");
+  st = run_cli(args, {});
+  ASSERT_TRUE(WIFEXITED(st) && WEXITSTATUS(st) == 0) << st;
+  const json moved = read_json(dir / "moved.json");
+  EXPECT_TRUE(moved["complete"].get<bool>());
+  ASSERT_EQ(moved["rows"].size(), same["rows"].size());
+  std::size_t remeasured = 0, from_a = 0;
+  for (const auto& r : moved["rows"]) {
+    if (r["node"] == "node-a") {
+      ++from_a;
+      continue;
+    }
+    EXPECT_EQ(r["node"], here);
+    if (r["scene"] == "random-30" && r.contains("naive_render_ms")) {
+      EXPECT_LT(r["naive_render_ms"].get<double>(), 1e6) << r["key"];
+      ++remeasured;
+    }
+  }
+  EXPECT_EQ(from_a, 3u);
+  EXPECT_GE(remeasured, 3u);
+  ASSERT_TRUE(moved.contains("machines"));
+  EXPECT_EQ(moved["machines"].size(), 2u);
+  ASSERT_TRUE(moved.contains("mixed_hardware"));
+  EXPECT_EQ(moved["mixed_hardware"]["cpu_models"][0], "Other CPU @ 1.0GHz");
+  EXPECT_EQ(moved["mixed_hardware"]["cores"][0], 1234);
+  EXPECT_EQ(moved["speedup_basis"], bench::kSpeedupBasis);
+  EXPECT_EQ(outcome(moved), outcome(same));
+  EXPECT_TRUE(valid_against_schema(moved, dir));
+  fs::remove_all(dir);
 }
 
 TEST(SweepSpd, ValidatesAtAReducedResolutionAndClaimsNoSpeedup) {
