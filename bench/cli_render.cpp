@@ -3,11 +3,11 @@
 
 #include "cli_util.h"
 #include "commands.h"
+#include "integrators.h"
 
 #include "accel/accel.h"
 #include "tracer/render.h"
 #include "tracer/scene_io.h"
-#include "tracer/spd_render.h"
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
@@ -40,7 +40,8 @@ struct RenderFlags {
   float exposure = 0.0f;
   int max_depth = 0;
   int leaf_size = 0;
-  bool spd = false;  ///< Render under the SPD test rules (tracer/spd_render.h).
+  std::string integrator;  ///< Integrator name (bench/integrators.h); "" = whitted.
+  bool spd = false;        ///< Shorthand for --integrator spd.
   /// auto | mixed: primitive dispatch (mixed measures the fast path).
   std::string dispatch = "auto";
   CLI::Option* max_depth_opt = nullptr;
@@ -69,11 +70,13 @@ nlohmann::json knob_params(const RenderFlags& f) {
   return params;
 }
 
-/// The Whitted render, or with --spd the SPD test-rules render; same options, same result.
-tracer::RenderResult render_with(const RenderFlags& f, const tracer::Scene& scene,
-                                 const accel::AnyAccel& structure, const tracer::RenderOptions& o) {
-  if (!f.spd) return tracer::render(scene, structure, o);
-  return tracer::render_spd(scene, structure, tracer::SpdOptions(o));
+/// The integrator of --integrator, or of its shorthand --spd; whitted when neither is given.
+const tracer::Integrator& chosen_integrator(const RenderFlags& f) {
+  if (f.spd && !f.integrator.empty() && f.integrator != "spd")
+    throw std::runtime_error("--spd: is --integrator spd, but --integrator " + f.integrator +
+                             " was given");
+  const std::string name = f.spd ? "spd" : f.integrator.empty() ? "whitted" : f.integrator;
+  return integrator_named(name, "--integrator");
 }
 
 double ms_since(std::chrono::steady_clock::time_point start) {
@@ -110,6 +113,7 @@ int run_render(const RenderFlags& f) {
                              ")");
   }
   const nlohmann::json params = knob_params(f);
+  const tracer::Integrator& integrator = chosen_integrator(f);
 
   tracer::Scene scene = tracer::load_scene_file(f.scene);
   scene.geometry.force_mixed = f.dispatch == "mixed";
@@ -134,10 +138,9 @@ int run_render(const RenderFlags& f) {
               double(build.memory_bytes) / 1024.0);
   std::fflush(stdout);
 
-  if (f.spd)
-    std::printf("mode     SPD test rules: %dx%d eye rays at pixel corners, tree depth %d\n",
-                width + 1, height + 1, tracer::kSpdMaxDepth);
-  const tracer::RenderResult result = render_with(f, scene, structure, options);
+  std::printf("integrator %s: %s\n", std::string(integrator.name).c_str(),
+              std::string(integrator.description).c_str());
+  const tracer::RenderResult result = tracer::render(scene, structure, options, integrator);
   const tracer::RayCounts& rays = result.rays;
   const double seconds = result.render_ms / 1e3;
   const double rays_per_s = seconds > 0 ? double(rays.total()) / seconds : 0.0;
@@ -159,7 +162,7 @@ int run_render(const RenderFlags& f) {
     // The counting pass: same image, with traversal counters on; never the timed one.
     tracer::RenderOptions counting = options;
     counting.count_traversal = true;
-    const tracer::RenderResult counted = render_with(f, scene, structure, counting);
+    const tracer::RenderResult counted = tracer::render(scene, structure, counting, integrator);
     if (counted.image.content_hash() != result.image.content_hash() ||
         !(counted.rays == result.rays))
       throw std::runtime_error("the counting pass rendered a different image than the timed pass");
@@ -167,7 +170,7 @@ int run_render(const RenderFlags& f) {
         {"scene", f.scene},
         {"resolution", {width, height}},
         {"samples_per_pixel", scene.camera.samples_per_pixel},
-        {"mode", f.spd ? "spd" : "whitted"},
+        {"integrator", integrator.name},
         {"dispatch",
          scene.geometry.kind_set() == tracer::KindSet::SpheresOnly ? "spheres_only" : "mixed"},
         {"threads", threads},
@@ -226,9 +229,11 @@ void add_render_command(CLI::App& app, int& exit_code) {
   cmd->add_option(
       "--stats", flags->stats,
       "Statistics JSON to write (adds an untimed counting pass for traversal counters)");
-  cmd->add_flag(
-      "--spd", flags->spd,
-      "SPD test rules: rays at pixel corners, tree depth 5, NFF shading (for .nff scenes)");
+  cmd->add_option("--integrator", flags->integrator,
+                  "Integrator (default whitted); one of " + integrator_names());
+  cmd->add_flag("--spd", flags->spd,
+                "Shorthand for --integrator spd: the SPD test rules (rays at pixel corners, tree "
+                "depth 5, NFF shading; for .nff scenes)");
   cmd->add_option(
          "--dispatch", flags->dispatch,
          "Primitive dispatch: auto (sphere-only scenes take the spheres-only path) | mixed")

@@ -5,6 +5,7 @@
 #include "cli_util.h"
 #include "sweep_definition.h"
 #include "sweep_runner.h"
+#include "integrators.h"
 
 #include <CLI/CLI.hpp>
 
@@ -28,7 +29,7 @@ struct SweepFlags {
   std::vector<int> max_depth, leaf_size;
   int repetitions = -1, warmup = -1, threads = -1;
   std::string resolution, out, jsonl, shard_text = "0/1", max_memory;
-  std::string validate_resolution;
+  std::string validate_resolution, integrator;
   bool resume = false, quiet = false, spd = false;
 };
 
@@ -79,7 +80,10 @@ SweepDefinition definition_from_flags(const SweepFlags& f) {
   if (f.threads >= 0) d.threads = f.threads;
   if (!f.max_memory.empty()) d.max_memory_bytes = parse_bytes(f.max_memory, "--max-memory");
   if (!f.resolution.empty()) std::tie(d.width, d.height) = parse_resolution(f.resolution, "--resolution");
-  if (f.spd) d.mode = RenderMode::Spd;
+  if (f.spd && !f.integrator.empty() && f.integrator != "spd")
+    throw SweepError("--spd: is --integrator spd, but --integrator " + f.integrator + " was given");
+  if (f.spd) d.integrator = "spd";
+  if (!f.integrator.empty()) d.integrator = integrator_named(f.integrator, "--integrator").name;
   if (!f.validate_resolution.empty())
     std::tie(d.validate_width, d.validate_height) =
         parse_resolution(f.validate_resolution, "--validate-resolution");
@@ -147,7 +151,9 @@ void add_sweep_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--warmup", flags->warmup, "Untimed renders before the timed ones")->check(CLI::Range(0, 10000));
   cmd->add_option("--threads", flags->threads, "Render threads (0 = all cores)")->check(CLI::Range(0, 4096));
   cmd->add_option("--resolution", flags->resolution, "Image size WIDTHxHEIGHT (default: the sweep file's)");
-  cmd->add_flag("--spd", flags->spd, "Render under the SPD test rules (sweep key \"mode\": \"spd\")");
+  cmd->add_option("--integrator", flags->integrator,
+                  "Integrator of every configuration (sweep key \"integrator\"); one of " + integrator_names());
+  cmd->add_flag("--spd", flags->spd, "Shorthand for --integrator spd (the SPD test rules)");
   cmd->add_option("--validate-resolution", flags->validate_resolution,
                   "Render naive and check every structure against it at WIDTHxHEIGHT only; no speedups then");
   cmd->add_option("--max-memory", flags->max_memory, "Build memory budget, e.g. 512M or 2G (0 = 25% of RAM)");

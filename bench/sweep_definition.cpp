@@ -1,5 +1,7 @@
 #include "sweep_definition.h"
 
+#include "integrators.h"
+
 #include "accel/accel.h"
 
 #include <algorithm>
@@ -151,8 +153,6 @@ std::string join(const std::vector<std::string>& v) {
 
 }  // namespace
 
-const char* mode_name(RenderMode m) { return m == RenderMode::Spd ? "spd" : "whitted"; }
-
 std::pair<int, int> parse_resolution(const std::string& text, const std::string& what) {
   const auto x = text.find('x');
   int w = 0, h = 0;
@@ -206,7 +206,7 @@ std::optional<std::vector<std::string>> structure_knobs(const std::string& struc
 SweepDefinition parse_sweep_definition(const json& j) {
   if (!j.is_object()) fail("", "a sweep definition must be a JSON object");
   require_keys(j, "", {"name", "description", "scenes", "structures", "knobs", "resolution", "threads",
-                       "repetitions", "warmup", "max_memory_bytes", "mode", "validate_resolution"});
+                       "repetitions", "warmup", "max_memory_bytes", "integrator", "mode", "validate_resolution"});
   SweepDefinition d;
   if (j.contains("name")) {
     d.name = get_string(j["name"], "/name");
@@ -240,10 +240,14 @@ SweepDefinition parse_sweep_definition(const json& j) {
       fail("/resolution", "must be \"WIDTHxHEIGHT\" or 0 for each scene's own, got " + r.dump());
     }
   }
-  if (j.contains("mode")) {
-    const std::string mode = get_string(j["mode"], "/mode");
-    if (mode == "spd") d.mode = RenderMode::Spd;
-    else if (mode != "whitted") fail("/mode", "must be \"whitted\" or \"spd\", got " + j["mode"].dump());
+  // "mode" is the key's older name, kept so that earlier sweep and results files still parse.
+  if (j.contains("integrator") && j.contains("mode")) fail("/mode", "give \"integrator\" or its older name \"mode\", not both");
+  for (const char* key : {"integrator", "mode"}) {
+    if (!j.contains(key)) continue;
+    const std::string where = std::string("/") + key;
+    d.integrator = get_string(j[key], where);
+    if (!find_integrator(d.integrator))
+      fail(where, "unknown integrator " + j[key].dump() + " (known: " + integrator_names() + ")");
   }
   if (j.contains("validate_resolution")) {
     const json& r = j["validate_resolution"];
@@ -340,7 +344,7 @@ json to_json(const SweepDefinition& d) {
           {"warmup", d.warmup},
           {"max_memory_bytes", d.max_memory_bytes}};
   // Defaults are left out so that definitions written before these keys existed still match.
-  if (d.mode != RenderMode::Whitted) j["mode"] = mode_name(d.mode);
+  if (d.integrator != "whitted") j["integrator"] = d.integrator;
   if (d.validates_apart())
     j["validate_resolution"] = std::to_string(d.validate_width) + "x" + std::to_string(d.validate_height);
   return j;

@@ -36,15 +36,6 @@ struct SceneSpec {
   std::string family() const { return source == SceneSource::Generator ? generator : "file"; }
 };
 
-/// The renderer every configuration of a sweep uses.
-enum class RenderMode {
-  Whitted,  ///< tracer::render, the Whitted ray tracer.
-  Spd,      ///< tracer::render_spd, Eric Haines' SPD test rules.
-};
-
-/// "whitted" or "spd".
-const char* mode_name(RenderMode m);
-
 /// Knob name -> the values to cross; each value is passed to accel::make_accel as given.
 using KnobValues = std::map<std::string, std::vector<nlohmann::json>>;
 
@@ -63,7 +54,7 @@ struct SweepDefinition {
   KnobValues knobs;                     ///< Sweep-wide knob values, applied to every structure that has the knob.
   int width = 0;                        ///< Image width, pixels; 0 = each scene's own.
   int height = 0;                       ///< Image height, pixels; 0 = each scene's own.
-  RenderMode mode = RenderMode::Whitted;///< Renderer of every configuration.
+  std::string integrator = "whitted";   ///< Integrator of every configuration (bench/integrators.h).
   int validate_width = 0;               ///< Width naive is rendered and compared at; 0 = the timed width.
   int validate_height = 0;              ///< Height naive is rendered and compared at; 0 = the timed height.
 

@@ -1,8 +1,9 @@
 #include "sweep_measure.h"
 
+#include "integrators.h"
+
 #include "tracer/image.h"
 #include "tracer/render.h"
-#include "tracer/spd_render.h"
 
 #include <chrono>
 #include <new>
@@ -17,16 +18,16 @@ double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
-/// One render of `scene` with the sweep's renderer.
-tracer::RenderResult render_with(const tracer::Scene& scene, const accel::AnyAccel& built, RenderMode mode,
-                                 int width, int height, int threads, bool counting) {
+/// One render of `scene` with the sweep's integrator.
+tracer::RenderResult render_with(const tracer::Scene& scene, const accel::AnyAccel& built,
+                                 const std::string& integrator, int width, int height, int threads,
+                                 bool counting) {
   tracer::RenderOptions o;
   o.threads = threads;
   o.count_traversal = counting;
   o.width = width;
   o.height = height;
-  if (mode == RenderMode::Spd) return tracer::render_spd(scene, built, tracer::SpdOptions(o));
-  return tracer::render(scene, built, o);
+  return tracer::render(scene, built, o, integrator_named(integrator, "integrator"));
 }
 
 /// The reason a check against naive fails, or "" when hash and ray counts agree.
@@ -87,7 +88,7 @@ Measurement measure(const tracer::Scene& scene, std::span<const accel::Aabb> box
   auto render_once = [&](bool counting) -> std::optional<double> {
     const auto t0 = Clock::now();
     tracer::RenderResult r =
-        render_with(scene, built, options.mode, options.width, options.height, options.threads, counting);
+        render_with(scene, built, options.integrator, options.width, options.height, options.threads, counting);
     const double s = seconds_since(t0);
     m.spent_trace_s += s;
     const std::uint64_t h = r.image.content_hash();
@@ -108,7 +109,7 @@ Measurement measure(const tracer::Scene& scene, std::span<const accel::Aabb> box
     if (options.validate_width > 0) {
       // The check against naive at the validation resolution, untimed.
       const auto t0 = Clock::now();
-      const tracer::RenderResult r = render_with(scene, built, options.mode, options.validate_width,
+      const tracer::RenderResult r = render_with(scene, built, options.integrator, options.validate_width,
                                                  options.validate_height, options.threads, false);
       m.spent_trace_s += seconds_since(t0);
       m.validation = Validation{options.validate_width, options.validate_height, r.image.content_hash(), r.rays};

@@ -36,7 +36,7 @@ struct MeasureOptions {
   int repetitions = 5;           ///< Timed renders.
   int warmup = 1;                ///< Untimed renders before them.
   accel::BuildLimits limits;     ///< Build memory budget.
-  RenderMode mode = RenderMode::Whitted;  ///< Renderer.
+  std::string integrator = "whitted";  ///< Integrator (bench/integrators.h).
   int validate_width = 0;        ///< Resolution of the check against naive; 0 = the timed one.
   int validate_height = 0;       ///< Height of that check, pixels.
 };

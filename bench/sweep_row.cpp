@@ -11,7 +11,7 @@ nlohmann::json row_head(const SweepConfig& config, const SceneSpec& scene, const
           {"scene", scene.name},
           {"scene_family", scene.family()},
           {"structure", config.structure},
-          {"mode", mode_name(options.mode)},
+          {"integrator", options.integrator},
           {"requested", config.params},
           {"width", options.width},
           {"height", options.height},

@@ -128,7 +128,7 @@ RunSummary run_sweep(const SweepDefinition& definition, const RunOptions& option
   mo.repetitions = definition.repetitions;
   mo.warmup = definition.warmup;
   mo.limits.max_memory_bytes = definition.max_memory_bytes;
-  mo.mode = definition.mode;
+  mo.integrator = definition.integrator;
   mo.validate_width = definition.validate_width;
   mo.validate_height = definition.validate_height;
   // Naive, the reference, is rendered at the validation resolution when one is set.

@@ -43,14 +43,16 @@ TEST(AccelImage, Spheres8000IsBitIdenticalThroughEveryStructure) {
   options.threads = 2;
 
   const tracer::RenderResult reference =
-      tracer::render(scene, accel::make_accel("naive", {}, boxes), options);
+      tracer::render(scene, accel::make_accel("naive", {}, boxes), options,
+                     tracer::whitted_integrator());
   ASSERT_GT(reference.rays.eye_hits, 0u);
   ASSERT_GT(reference.rays.shadow, 0u);
 
   for (const Variant& v : variants()) {
     SCOPED_TRACE(v.accel + " " + v.params.dump());
     const tracer::RenderResult result =
-        tracer::render(scene, accel::make_accel(v.accel, v.params, boxes), options);
+        tracer::render(scene, accel::make_accel(v.accel, v.params, boxes), options,
+                       tracer::whitted_integrator());
     EXPECT_EQ(result.image.content_hash(), reference.image.content_hash());
     EXPECT_TRUE(result.image == reference.image);
     EXPECT_TRUE(result.rays == reference.rays);

@@ -109,6 +109,10 @@ TEST_F(Cli, BadFlagsGiveOneLineAndExitNonZero) {
       {"gen five --count 3 -o " + path("x.json"),
        "accelbench: five: takes no count (it has a fixed size)\n"},
       {"render " + scene + " --threads -2", "accelbench: --threads: "},
+      {"render " + scene + " --integrator phong",
+       "accelbench: --integrator: unknown integrator 'phong' (known: whitted, spd"},
+      {"render " + scene + " --spd --integrator whitted",
+       "accelbench: --spd: is --integrator spd, but --integrator whitted was given\n"},
       {"frobnicate", "accelbench: "},
   };
   for (const auto& c : cases) {

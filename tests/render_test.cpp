@@ -1,11 +1,17 @@
 // The render loop: image size, determinism at any thread count, and the camera's film mapping.
 
 #include "tracer/camera.h"
+#include "tracer/parallel.h"
 #include "tracer/render.h"
+#include "tracer/render_frame.h"
 
 #include "scenes_gen/generators.h"
 
 #include <gtest/gtest.h>
+
+#include <atomic>
+#include <stdexcept>
+#include <vector>
 
 namespace {
 
@@ -20,7 +26,7 @@ tracer::RenderResult render_with(const tracer::Scene& scene, const std::string& 
   options.width = w;
   options.height = h;
   options.count_traversal = count;
-  return tracer::render(scene, accel, options);
+  return tracer::render(scene, accel, options, tracer::whitted_integrator());
 }
 
 TEST(Render, BitIdenticalAtAnyThreadCountWithJitteredSamples) {
@@ -55,6 +61,108 @@ TEST(Render, RejectsBadOptions) {
   const tracer::Scene scene = scenes_gen::generate("five", gen);
   EXPECT_THROW(render_with(scene, "naive", -1), std::invalid_argument);
   EXPECT_THROW(render_with(scene, "naive", 1, -5, 10), std::invalid_argument);
+}
+
+TEST(ParallelItems, RunsEveryItemOnceOnItsWorkers) {
+  for (int threads : {1, 2, 7}) {
+    std::vector<int> runs(100, 0), worker_of(100, -1);
+    tracer::parallel_items(threads, 100, [&](int worker, int item) {
+      runs[std::size_t(item)]++;  // each item has one writer
+      worker_of[std::size_t(item)] = worker;
+    });
+    for (int i = 0; i < 100; ++i) {
+      EXPECT_EQ(runs[std::size_t(i)], 1) << i;
+      EXPECT_TRUE(worker_of[std::size_t(i)] >= 0 && worker_of[std::size_t(i)] < threads);
+    }
+  }
+  tracer::parallel_items(4, 0, [](int, int) { FAIL() << "no item to run"; });
+}
+
+TEST(ParallelItems, AWorkerExceptionStopsTheOthersAndReachesTheCaller) {
+  for (int threads : {1, 3}) {
+    std::atomic<int> after{0};
+    EXPECT_THROW(tracer::parallel_items(threads, 100000,
+                                        [&](int, int item) {
+                                          if (item == 10) throw std::runtime_error("item 10");
+                                          if (item > 10 + 64) after++;
+                                        }),
+                 std::runtime_error);
+    // Once item 10 has thrown, the others take no new item (a few may be under way).
+    EXPECT_LT(after.load(), 1000) << threads;
+  }
+}
+
+/// A test integrator, one file's worth: red where the camera ray hits; with its knob "fail", an
+/// exception on every camera ray through the right half of the image.
+template <class Isect>
+struct RedTracer {
+  Isect isect;
+  bool fail;
+  tracer::Color trace_eye(const tracer::Ray& ray, tracer::RayCounts& counts) const {
+    counts.eye++;
+    if (fail && ray.dir.x > 0.0f) throw std::runtime_error("worker failed");
+    return isect.closest(ray).found() ? tracer::Color(1, 0, 0) : tracer::Color(0.0f);
+  }
+};
+
+nlohmann::json red_params(const nlohmann::json& given) {
+  nlohmann::json p = {{"fail", false}};
+  if (given.is_object()) p.update(given);
+  return p;
+}
+
+tracer::RenderResult render_red(const tracer::Scene& scene, const accel::AnyAccel& accel,
+                                const tracer::RenderOptions& options, const nlohmann::json& p) {
+  const bool fail = p.at("fail").get<bool>();
+  return tracer::render_frame(scene, accel, options, tracer::FilmSampling::PixelSamples,
+                              [&](const auto& isect) {
+                                return RedTracer<std::decay_t<decltype(isect)>>{isect, fail};
+                              });
+}
+
+constexpr tracer::Integrator kRed{"red", "test: red where the camera ray hits", red_params,
+                                  render_red};
+
+TEST(Render, AnIntegratorIsOneFunctionThroughTheSameLoop) {
+  scenes_gen::GenOptions gen;
+  const tracer::Scene scene = scenes_gen::generate("five", gen);
+  const auto boxes = scene.geometry.primitive_bounds();
+  const accel::AnyAccel a = accel::make_accel("bvh", nlohmann::json::object(), boxes);
+  tracer::RenderOptions options;
+  options.width = 40;
+  options.height = 30;
+  options.threads = 3;
+  const tracer::RenderResult r = tracer::render(scene, a, options, kRed);
+  EXPECT_EQ(r.rays.eye, 40u * 30u);
+  EXPECT_GT(r.image.mean(), 0.0);
+  // A worker's exception stops the render and reaches the caller, at any thread count.
+  for (int threads : {1, 2, 3}) {
+    options.threads = threads;
+    EXPECT_THROW(tracer::render(scene, a, options, kRed, {{"fail", true}}), std::runtime_error);
+  }
+}
+
+TEST(Render, WindowRendersThatPartOfTheFullImage) {
+  scenes_gen::GenOptions gen;
+  const tracer::Scene scene = scenes_gen::generate("five", gen);
+  const auto boxes = scene.geometry.primitive_bounds();
+  const accel::AnyAccel a = accel::make_accel("naive", nlohmann::json::object(), boxes);
+  tracer::RenderOptions options;
+  options.width = 32;
+  options.height = 24;
+  options.threads = 2;
+  const tracer::RenderResult full = tracer::render(scene, a, options, tracer::whitted_integrator());
+  options.window = {5, 7, 21, 13};
+  const tracer::RenderResult part = tracer::render(scene, a, options, tracer::whitted_integrator());
+  ASSERT_EQ(part.image.width(), 16);
+  ASSERT_EQ(part.image.height(), 6);
+  for (int y = 0; y < 6; ++y)
+    for (int x = 0; x < 16; ++x) EXPECT_EQ(part.image.at(x, y), full.image.at(x + 5, y + 7));
+  options.window = {5, 7, 40, 13};
+  EXPECT_THROW(tracer::render(scene, a, options, tracer::whitted_integrator()),
+               std::invalid_argument);
+  EXPECT_THROW(tracer::render(scene, a, {}, tracer::whitted_integrator(), {{"max_depth", 3}}),
+               std::invalid_argument);
 }
 
 TEST(Render, SampleOffsetsAreStratifiedAndStable) {

@@ -1,6 +1,6 @@
 #include "tracer/nff.h"
 #include "tracer/scene_io.h"
-#include "tracer/spd_render.h"
+#include "tracer/render.h"
 
 #include <gtest/gtest.h>
 
@@ -26,10 +26,10 @@ Scene parse(const std::string& text) {
 }
 
 RenderResult render(const Scene& scene, const std::string& accel_name,
-                    const tracer::SpdOptions& options = {}) {
+                    const tracer::RenderOptions& options = {}) {
   const auto boxes = scene.geometry.primitive_bounds();
   const accel::AnyAccel a = accel::make_accel(accel_name, nullptr, boxes);
-  return tracer::render_spd(scene, a, options);
+  return tracer::render(scene, a, options, tracer::spd_integrator());
 }
 
 // A 4x4 image (25 corner rays) looking down -z from z = 5 at a 2x2 square at z = 0 that fills
@@ -97,7 +97,7 @@ TEST(Spd, SameImageAtAnyThreadCount) {
   const auto path = kSpdDir / "balls_sf2.nff";
   if (!std::filesystem::exists(path)) GTEST_SKIP() << "SPD scenes not found at " << path;
   const Scene s = tracer::load_nff(path.string());
-  tracer::SpdOptions o;
+  tracer::RenderOptions o;
   o.width = o.height = 64;
   o.threads = 1;
   const RenderResult one = render(s, "bvh", o);
@@ -118,7 +118,7 @@ TEST(Spd, ConvertedJsonRendersTheSameImage) {
     tracer::save_scene_file(nff, json_path.string());
     const Scene json = tracer::load_scene_file(json_path.string());
     std::filesystem::remove(json_path);
-    tracer::SpdOptions o;
+    tracer::RenderOptions o;
     o.width = o.height = 48;
     const RenderResult a = render(nff, "bvh", o), b = render(json, "bvh", o);
     EXPECT_EQ(a.image.content_hash(), b.image.content_hash()) << name;
@@ -128,13 +128,13 @@ TEST(Spd, ConvertedJsonRendersTheSameImage) {
 
 TEST(Spd, BadWindowIsRejected) {
   const Scene s = parse(view() + kFacingSquare);
-  tracer::SpdOptions o;
+  tracer::RenderOptions o;
   o.window = {2, 2, 6, 3};
   EXPECT_THROW(render(s, "naive", o), std::invalid_argument);
 }
 
 /// Every built structure against naive: same image hash and same ray counts.
-void expect_structures_match_naive(const Scene& scene, const tracer::SpdOptions& options) {
+void expect_structures_match_naive(const Scene& scene, const tracer::RenderOptions& options) {
   const RenderResult ref = render(scene, "naive", options);
   EXPECT_GT(ref.rays.eye_hits, 0u);
   for (const std::string& name : accel::accel_names()) {
@@ -148,7 +148,7 @@ void expect_structures_match_naive(const Scene& scene, const tracer::SpdOptions&
 TEST(SpdStructures, EqualNaiveOnBallsSf2) {
   const auto path = kSpdDir / "balls_sf2.nff";
   if (!std::filesystem::exists(path)) GTEST_SKIP() << "SPD scenes not found at " << path;
-  tracer::SpdOptions o;
+  tracer::RenderOptions o;
   o.width = o.height = 192;  // the whole image at reduced size keeps naive quick
   expect_structures_match_naive(tracer::load_nff(path.string()), o);
 }
@@ -160,7 +160,7 @@ TEST_P(SpdWindow, EveryStructureEqualsNaive) {
   const auto path = kSpdDir / GetParam();
   if (!std::filesystem::exists(path)) GTEST_SKIP() << "SPD scenes not found at " << path;
   const Scene s = tracer::load_nff(path.string());
-  tracer::SpdOptions o;
+  tracer::RenderOptions o;
   o.window = {244, 244, 268, 268};
   expect_structures_match_naive(s, o);
 }

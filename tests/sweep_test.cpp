@@ -60,7 +60,9 @@ TEST(SweepDefinition, ErrorsNameTheJsonPointer) {
       {{{"knobs", {{"leafsize", {1, 2}}}}}, "/knobs/leafsize: no structure in this sweep has the knob 'leafsize'"},
       {{{"resolution", "64by48"}}, "/resolution: expected WIDTHxHEIGHT"},
       {{{"colour", 1}}, "/colour: unknown key"},
-      {{{"mode", "phong"}}, "/mode: must be \"whitted\" or \"spd\", got \"phong\""},
+      {{{"integrator", "phong"}}, "/integrator: unknown integrator \"phong\" (known: whitted, spd"},
+      {{{"mode", "phong"}}, "/mode: unknown integrator \"phong\" (known: whitted, spd"},
+      {{{"mode", "spd"}, {"integrator", "spd"}}, "/mode: give \"integrator\" or its older name \"mode\", not both"},
       {{{"validate_resolution", "64"}}, "/validate_resolution: expected WIDTHxHEIGHT"},
   };
   for (const auto& c : cases) {
@@ -415,12 +417,12 @@ TEST(SweepSpd, ValidatesAtAReducedResolutionAndClaimsNoSpeedup) {
   ASSERT_TRUE(WIFEXITED(st) && WEXITSTATUS(st) == 0) << st;
   const json results = read_json(dir / "spd.json");
   EXPECT_TRUE(results["complete"].get<bool>());
-  EXPECT_EQ(results["sweep"]["mode"], "spd");
+  EXPECT_EQ(results["sweep"]["integrator"], "spd");
   EXPECT_EQ(results["sweep"]["validate_resolution"], "8x6");
   std::set<std::string> structures;
   for (const auto& row : results["rows"]) {
     EXPECT_EQ(row["status"], "ok") << row.dump();
-    EXPECT_EQ(row["mode"], "spd");
+    EXPECT_EQ(row["integrator"], "spd");
     structures.insert(row["structure"].get<std::string>());
     if (row["structure"] == "naive") {
       // Naive is rendered and timed at the validation resolution only, and its row says so.
@@ -446,8 +448,8 @@ TEST(SweepSpd, ValidatesAtAReducedResolutionAndClaimsNoSpeedup) {
   EXPECT_EQ(structures, (std::set<std::string>{"naive", "bvh", "kdtree"}));
   EXPECT_TRUE(valid_against_schema(results, dir));
 
-  // A bad mode in a sweep file is refused; the one-line error names the JSON pointer.
-  std::ofstream(dir / "bad.json") << json{{"scenes", {"five"}}, {"structures", {"naive"}}, {"mode", "spd2"}}.dump();
+  // A bad integrator in a sweep file is refused; the one-line error names the JSON pointer.
+  std::ofstream(dir / "bad.json") << json{{"scenes", {"five"}}, {"structures", {"naive"}}, {"integrator", "spd2"}}.dump();
   const std::string got = [&] {
     try {
       bench::load_sweep_file((dir / "bad.json").string());
@@ -456,7 +458,7 @@ TEST(SweepSpd, ValidatesAtAReducedResolutionAndClaimsNoSpeedup) {
     }
     return std::string("(no error)");
   }();
-  EXPECT_NE(got.find("/mode: must be \"whitted\" or \"spd\", got \"spd2\""), std::string::npos) << got;
+  EXPECT_NE(got.find("/integrator: unknown integrator \"spd2\" (known: whitted, spd"), std::string::npos) << got;
   EXPECT_EQ(got.find('\n'), std::string::npos);
   fs::remove_all(dir);
 }

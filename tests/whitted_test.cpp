@@ -37,7 +37,7 @@ tracer::RenderResult render_naive(const tracer::Scene& scene, int threads = 1) {
   const accel::AnyAccel accel = accel::make_accel("naive", nlohmann::json::object(), boxes);
   tracer::RenderOptions options;
   options.threads = threads;
-  return tracer::render(scene, accel, options);
+  return tracer::render(scene, accel, options, tracer::whitted_integrator());
 }
 
 TEST(WhiteFurnace, ClearGlassSphereConservesEnergy) {

@@ -1,35 +1,81 @@
 #pragma once
-// Renders a scene through one acceleration structure: tiles on all cores, bit-identical at any
-// thread count.
+// The render entry point: one scene, one built structure, one integrator chosen by the caller.
+//
+// An integrator (Whitted, SPD, photon mapping, ...) is one row of type Integrator: a name, its
+// knobs and its render function. bench/ keeps the one table of them; the tracer knows only its
+// own. Each integrator is a template on the intersector, rendered through the one tile-parallel
+// loop of render_frame.h, so every structure's loop is compiled on its own and the image and the
+// statistics are bit-identical at any thread count.
 
 #include "image.h"
+#include "parallel.h"
 #include "ray_counts.h"
 #include "scene.h"
 
 #include "accel/accel.h"
 
+#include <nlohmann/json.hpp>
+
+#include <string_view>
+
 namespace tracer {
+
+/// A rectangle of pixels [x0, x1) x [y0, y1) of the full image.
+struct PixelWindow {
+  int x0 = 0;   ///< First column, pixels.
+  int y0 = 0;   ///< First row, pixels (0 = top).
+  int x1 = -1;  ///< One past the last column, pixels; < 0: the image width.
+  int y1 = -1;  ///< One past the last row, pixels; < 0: the image height.
+};
 
 struct RenderOptions {
   int threads = 0;               ///< Worker threads; 0 = every hardware thread.
   bool count_traversal = false;  ///< Gather TraversalCounters (slower; never for timing).
   int width = 0;                 ///< Image width, pixels; 0 = the scene camera's.
   int height = 0;                ///< Image height, pixels; 0 = the scene camera's.
+  PixelWindow window;            ///< Part of the image to render; default: all of it.
 };
 
 struct RenderResult {
-  Image image;                         ///< Linear RGB radiance per pixel.
+  Image image;                         ///< Linear RGB radiance per pixel of the window.
   RayCounts rays;                      ///< Rays traced, by kind.
   accel::TraversalCounters traversal;  ///< Summed over all rays; zero unless counted.
-  double render_ms = 0;                ///< Wall-clock time of the tile loop, milliseconds.
+  /// Wall-clock time of the whole render, milliseconds: the integrator's preparation (photon
+  /// tracing, map building) and the tile loop.
+  double render_ms = 0;
+  /// The integrator's own statistics (photon maps, phase times, ...); empty for Whitted and SPD.
+  nlohmann::json stats = nlohmann::json::object();
 };
 
-/// Renders `scene` with the Whitted integrator through `accel`, which must have been built over
-/// scene.geometry.primitive_bounds(). Throws std::invalid_argument on bad options.
-RenderResult render(const Scene& scene, const accel::AnyAccel& accel, const RenderOptions& options);
+/// One integrator: a row of the integrator table (bench/integrators.h).
+struct Integrator {
+  std::string_view name;         ///< Its name in --integrator, scene JSON and results rows.
+  std::string_view description;  ///< One line for --help and the docs.
+  /// Every knob with its default filled in, from the given ones (a JSON object, possibly empty).
+  /// Throws std::invalid_argument, one line naming the knob, on an unknown or bad knob.
+  nlohmann::json (*params)(const nlohmann::json& given);
+  /// Renders with knobs already completed by `params`. Called through tracer::render only.
+  RenderResult (*render)(const Scene& scene, const accel::AnyAccel& accel,
+                         const RenderOptions& options, const nlohmann::json& params);
+};
 
-/// The number of worker threads `threads` resolves to (0 = hardware threads, at least 1).
-int resolve_threads(int threads);
+/// Renders `scene` through `accel`, which must have been built over
+/// scene.geometry.primitive_bounds(), with `integrator` and its knobs `params` (a JSON object;
+/// missing knobs take their defaults). Throws std::invalid_argument on bad options or knobs; an
+/// exception in a worker thread stops the render and is rethrown here.
+RenderResult render(const Scene& scene, const accel::AnyAccel& accel, const RenderOptions& options,
+                    const Integrator& integrator,
+                    const nlohmann::json& params = nlohmann::json::object());
+
+/// Whitted ray tracing (tracer/whitted.h): samples_per_pixel jittered camera rays per pixel.
+const Integrator& whitted_integrator();
+
+/// Eric Haines' SPD test rules (tracer/spd_render.h): rays at pixel corners, tree depth 5.
+const Integrator& spd_integrator();
+
+/// The knobs of an integrator that has none: `given` must be empty (else std::invalid_argument
+/// naming the first key); returns an empty object.
+nlohmann::json no_params(std::string_view integrator, const nlohmann::json& given);
 
 /// Sub-pixel offset in [0, 1)^2 of sample `s` of `spp` in pixel (x, y): stratified on a
 /// ceil(sqrt(spp)) grid and jittered by a hash of (x, y, s), so it is the same on every run and

@@ -1,17 +1,13 @@
 #include "spd_render.h"
 
-#include "camera.h"
 #include "intersector.h"
 #include "nff_shading.h"
 #include "offset_ray.h"
 #include "optics.h"
+#include "render_frame.h"
 #include "surface.h"
 
-#include <atomic>
-#include <chrono>
-#include <stdexcept>
-#include <string>
-#include <thread>
+#include <type_traits>
 #include <vector>
 
 namespace tracer {
@@ -26,6 +22,15 @@ class SpdTracer {
         isect_(isect),
         surfaces_(&surfaces),
         intensity_(spd_light_intensity(scene.lights.size())) {}
+
+  /// Colour along an eye ray (tree depth 1); counts it, and whether it hit.
+  Color trace_eye(const Ray& ray, RayCounts& counts) const {
+    counts.eye++;
+    bool hit = false;
+    const Color color = trace(ray, 1, counts, &hit);
+    if (hit) counts.eye_hits++;
+    return color;
+  }
 
   /// Colour along `ray` at tree depth `depth`; sets *hit to whether it met a primitive.
   Color trace(const Ray& ray, int depth, RayCounts& counts, bool* hit_out = nullptr) const {
@@ -101,85 +106,27 @@ class SpdTracer {
   float intensity_;
 };
 
-PixelWindow resolve(const PixelWindow& w, int width, int height) {
-  PixelWindow r = w;
-  if (r.x1 < 0) r.x1 = width;
-  if (r.y1 < 0) r.y1 = height;
-  if (r.x0 < 0 || r.y0 < 0 || r.x0 >= r.x1 || r.y0 >= r.y1 || r.x1 > width || r.y1 > height)
-    throw std::invalid_argument("window: [" + std::to_string(r.x0) + ", " + std::to_string(r.x1) +
-                                ") x [" + std::to_string(r.y0) + ", " + std::to_string(r.y1) +
-                                ") is not inside the " + std::to_string(width) + "x" +
-                                std::to_string(height) + " image");
-  return r;
-}
-
-}  // namespace
-
 RenderResult render_spd(const Scene& scene, const accel::AnyAccel& accel,
-                        const SpdOptions& options) {
-  const int width = options.width > 0 ? options.width : scene.camera.width;
-  const int height = options.height > 0 ? options.height : scene.camera.height;
-  if (width <= 0 || height <= 0 || width > 16384 || height > 16384)
-    throw std::invalid_argument("size: " + std::to_string(width) + "x" + std::to_string(height) +
-                                " is not in [1, 16384]");
-  const PixelWindow win = resolve(options.window, width, height);
-  const int threads = resolve_threads(options.threads);
-
+                        const RenderOptions& options, const nlohmann::json&) {
   std::vector<NffSurface> surfaces;
   surfaces.reserve(scene.materials.size());
   for (const Material& m : scene.materials) surfaces.push_back(nff_surface(m));
+  return render_frame(scene, accel, options, FilmSampling::PixelCorners,
+                      [&scene, &surfaces](const auto& isect) {
+                        return SpdTracer<std::decay_t<decltype(isect)>>(scene, isect, surfaces);
+                      });
+}
 
-  // Colours at the (w+1) x (h+1) pixel corners of the window; each corner is one eye ray.
-  const int cw = win.x1 - win.x0 + 1, ch = win.y1 - win.y0 + 1;
-  std::vector<Color> corners(std::size_t(cw) * std::size_t(ch));
-  std::vector<RayCounts> counts(static_cast<std::size_t>(threads));
-  std::vector<accel::TraversalCounters> traversal(static_cast<std::size_t>(threads));
-  const PinholeCamera camera(scene.camera, width, height);
+nlohmann::json spd_params(const nlohmann::json& given) { return no_params("spd", given); }
 
-  const auto start = std::chrono::steady_clock::now();
-  with_intersector(scene.geometry, accel, options.count_traversal, [&](const auto& base) {
-    std::atomic<int> next_row{0};
-    auto worker = [&](int index) {
-      const auto isect = base.with_counters(&traversal[std::size_t(index)]);
-      const SpdTracer<std::decay_t<decltype(isect)>> tracer(scene, isect, surfaces);
-      RayCounts& rc = counts[std::size_t(index)];
-      // Rows are handed out dynamically; every corner's colour depends on nothing but its ray,
-      // so the image and the summed counts are the same whichever thread traces which row.
-      for (int row = next_row++; row < ch; row = next_row++) {
-        for (int col = 0; col < cw; ++col) {
-          Ray ray = camera.ray_through(float(win.x0 + col), float(win.y0 + row));
-          ray.tmin = scene.camera.hither / glm::dot(ray.dir, camera.forward());
-          rc.eye++;
-          bool hit = false;
-          corners[std::size_t(row) * std::size_t(cw) + std::size_t(col)] =
-              tracer.trace(ray, 1, rc, &hit);
-          if (hit) rc.eye_hits++;
-        }
-      }
-    };
-    if (threads == 1) {
-      worker(0);
-    } else {
-      std::vector<std::thread> pool;
-      for (int i = 0; i < threads; ++i) pool.emplace_back(worker, i);
-      for (std::thread& t : pool) t.join();
-    }
-  });
-  const auto stop = std::chrono::steady_clock::now();
+}  // namespace
 
-  RenderResult result;
-  result.render_ms = std::chrono::duration<double, std::milli>(stop - start).count();
-  for (const RayCounts& c : counts) result.rays += c;
-  for (const accel::TraversalCounters& t : traversal) result.traversal += t;
-  result.image = Image(cw - 1, ch - 1);
-  for (int y = 0; y + 1 < ch; ++y)
-    for (int x = 0; x + 1 < cw; ++x) {
-      const auto at = [&](int cx, int cy) {
-        return corners[std::size_t(cy) * std::size_t(cw) + std::size_t(cx)];
-      };
-      result.image.at(x, y) = 0.25f * ((at(x, y) + at(x + 1, y)) + (at(x, y + 1) + at(x + 1, y + 1)));
-    }
-  return result;
+const Integrator& spd_integrator() {
+  static constexpr Integrator kSpd{
+      "spd",
+      "Eric Haines' SPD test rules: eye rays at pixel corners, tree depth 5, NFF shading",
+      spd_params, render_spd};
+  return kSpd;
 }
 
 }  // namespace tracer

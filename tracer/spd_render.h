@@ -16,37 +16,14 @@
 // rays stop at any primitive. Eye rays start at the camera's hither distance.
 
 #include "render.h"
-#include "scene.h"
-
-#include "accel/accel.h"
 
 namespace tracer {
 
 /// Maximum ray-tree depth of the SPD rules; the eye ray has depth 1.
 inline constexpr int kSpdMaxDepth = 5;
 
-/// A rectangle of pixels [x0, x1) x [y0, y1) of the full image.
-struct PixelWindow {
-  int x0 = 0;   ///< First column, pixels.
-  int y0 = 0;   ///< First row, pixels (0 = top).
-  int x1 = -1;  ///< One past the last column, pixels; < 0: the image width.
-  int y1 = -1;  ///< One past the last row, pixels; < 0: the image height.
-};
-
-/// The Whitted render's options (threads, counting, size; 0 = the camera's NFF resolution),
-/// plus a window of the image.
-struct SpdOptions : RenderOptions {
-  PixelWindow window;             ///< Part of the camera's image to render; default: all of it.
-
-  SpdOptions() = default;
-  explicit SpdOptions(const RenderOptions& base) : RenderOptions(base) {}
-};
-
-/// Renders `scene` through the built structure `accel` under the SPD rules. The image and the
-/// counts are identical for every structure and every thread count. Throws std::invalid_argument
-/// naming the option when the window or the size is out of range.
-/// The image holds the window's pixels; RenderResult::rays counts eye rays at pixel corners.
-RenderResult render_spd(const Scene& scene, const accel::AnyAccel& accel,
-                        const SpdOptions& options = {});
+/// Renders `scene` through the built structure `accel` under the SPD test rules: the
+/// integrator row of tracer::spd_integrator() (render.h), rendered through tracer::render. The
+/// image holds the window's pixels; RenderResult::rays counts eye rays at pixel corners.
 
 }  // namespace tracer

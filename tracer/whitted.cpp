@@ -1,5 +1,7 @@
 #include "whitted.h"
 
+#include "render_frame.h"
+
 namespace tracer {
 
 namespace {
@@ -29,6 +31,29 @@ Color diffuse_phong_brdf(const DirectResponse& r, const Vec3& n, const Vec3& to_
     f += Color(r.specular * (r.shininess + 2.0f) / (2.0f * kPi) * std::pow(c, r.shininess));
   }
   return f;
+}
+
+namespace {
+
+RenderResult render_whitted(const Scene& scene, const accel::AnyAccel& accel,
+                            const RenderOptions& options, const nlohmann::json&) {
+  return render_frame(scene, accel, options, FilmSampling::PixelSamples,
+                      [&scene](const auto& isect) {
+                        return Whitted<std::decay_t<decltype(isect)>>(scene, isect);
+                      });
+}
+
+nlohmann::json whitted_params(const nlohmann::json& given) { return no_params("whitted", given); }
+
+}  // namespace
+
+const Integrator& whitted_integrator() {
+  static constexpr Integrator kWhitted{
+      "whitted",
+      "Whitted ray tracing: point lights with shadow rays, diffuse + Phong, mirrors, Fresnel "
+      "dielectrics",
+      whitted_params, render_whitted};
+  return kWhitted;
 }
 
 }  // namespace tracer

@@ -1,0 +1,19 @@
+#pragma once
+// The one parallel loop of the tracer: work items handed out to threads from an atomic counter,
+// with a worker's exception stopping the others and reaching the caller.
+
+#include <functional>
+
+namespace tracer {
+
+/// Calls body(worker, item) once for every item in [0, count), on `threads` threads (worker 0 is
+/// the calling thread, workers are numbered 0 .. threads-1); items go out in increasing order
+/// from one atomic counter, so a worker's calls see increasing items. When a call throws, the
+/// workers take no new item, and the first exception is rethrown here after every thread has
+/// joined. `threads` is clamped to [1, count]; nothing runs when count <= 0.
+void parallel_items(int threads, int count, const std::function<void(int worker, int item)>& body);
+
+/// The number of worker threads `threads` resolves to (0 = hardware threads, at least 1).
+int resolve_threads(int threads);
+
+}  // namespace tracer

@@ -1,0 +1,123 @@
+#pragma once
+// The one tile-parallel render loop behind every integrator. Include it only in the one .cpp
+// file of an integrator: render_frame() instantiates that integrator once per structure, kind
+// set and counting flag (with_intersector), and that is where the compile time goes.
+
+#include "camera.h"
+#include "intersector.h"
+#include "parallel.h"
+#include "render.h"
+
+#include <chrono>
+#include <cstdint>
+#include <optional>
+#include <type_traits>
+#include <vector>
+
+namespace tracer {
+
+/// Which points of the film an integrator traces camera rays through.
+enum class FilmSampling : std::uint8_t {
+  PixelSamples,  ///< samples_per_pixel jittered rays per pixel (sample_offset), averaged.
+  PixelCorners,  ///< One ray per pixel corner; each pixel is the mean of its four (SPD rules).
+};
+
+namespace render_frame_detail {
+
+/// Tile edge, in film samples: small enough to balance the threads, large enough to share caches.
+inline constexpr int kTileSize = 16;
+
+/// Everything about a frame that does not depend on the integrator.
+struct Frame {
+  PinholeCamera camera;     ///< The scene's camera at the render's image size.
+  PixelWindow window;       ///< The window, resolved against the image size.
+  FilmSampling film;        ///< What a film sample is.
+  int grid_w = 0;           ///< Film samples per row: window pixels, or their corners.
+  int grid_h = 0;           ///< Rows of film samples.
+  int tiles_x = 0;          ///< Tiles per row of the sample grid.
+  int tiles = 0;            ///< Tiles in all.
+  int threads = 1;          ///< Worker threads.
+  int spp = 1;              ///< Samples per pixel (PixelSamples).
+};
+
+/// Per-worker tallies, summed after the join (integer sums: order does not matter).
+struct ThreadTally {
+  RayCounts rays;
+  accel::TraversalCounters traversal;
+};
+
+/// The frame of `options` on `scene`; throws std::invalid_argument naming a bad option.
+Frame make_frame(const Scene& scene, const RenderOptions& options, FilmSampling film);
+
+/// The image from the grid of film samples: the grid itself, or every pixel the mean of its four
+/// corners.
+Image resolve_image(const Frame& frame, const std::vector<Color>& grid);
+
+/// Traces the film samples of one tile into `grid`.
+template <class Tracer>
+void trace_tile(const Frame& f, int tile, const Tracer& tracer, RayCounts& rays,
+                std::vector<Color>& grid) {
+  const int gx0 = (tile % f.tiles_x) * kTileSize, gy0 = (tile / f.tiles_x) * kTileSize;
+  const int gx1 = std::min(gx0 + kTileSize, f.grid_w), gy1 = std::min(gy0 + kTileSize, f.grid_h);
+  const float inv_spp = 1.0f / float(f.spp);
+  for (int gy = gy0; gy < gy1; ++gy)
+    for (int gx = gx0; gx < gx1; ++gx) {
+      const int x = f.window.x0 + gx, y = f.window.y0 + gy;
+      Color c;
+      if (f.film == FilmSampling::PixelCorners) {
+        c = tracer.trace_eye(f.camera.ray_through(float(x), float(y)), rays);
+      } else {
+        Color sum(0.0f);
+        for (int s = 0; s < f.spp; ++s) {
+          float jx = 0.5f, jy = 0.5f;
+          sample_offset(x, y, s, f.spp, jx, jy);
+          sum += tracer.trace_eye(f.camera.primary_ray(x, y, jx, jy), rays);
+        }
+        c = f.spp == 1 ? sum : sum * inv_spp;
+      }
+      grid[std::size_t(gy) * std::size_t(f.grid_w) + std::size_t(gx)] = c;
+    }
+}
+
+}  // namespace render_frame_detail
+
+/// Renders `scene` through `accel` in tiles on every worker thread. `make_tracer(isect)` is called
+/// once per worker with that worker's intersector (its own traversal counters) and returns the
+/// worker's tracer: an object with `Color trace_eye(const Ray&, RayCounts&) const` that traces one
+/// camera ray and counts it. Every film sample depends on its ray alone, so the image and the
+/// summed counts are the same at any thread count. A worker's exception is rethrown here.
+template <class MakeTracer>
+RenderResult render_frame(const Scene& scene, const accel::AnyAccel& accel,
+                          const RenderOptions& options, FilmSampling film,
+                          MakeTracer&& make_tracer) {
+  using namespace render_frame_detail;
+  const Frame frame = make_frame(scene, options, film);
+  std::vector<Color> grid(std::size_t(frame.grid_w) * std::size_t(frame.grid_h));
+  std::vector<ThreadTally> tallies(static_cast<std::size_t>(frame.threads));
+
+  const auto start = std::chrono::steady_clock::now();
+  with_intersector(scene.geometry, accel, options.count_traversal, [&](const auto& base) {
+    using Isect = std::decay_t<decltype(base)>;
+    using Tracer = std::decay_t<decltype(make_tracer(base))>;
+    std::vector<std::optional<Tracer>> tracers(static_cast<std::size_t>(frame.threads));
+    parallel_items(frame.threads, frame.tiles, [&](int worker, int tile) {
+      ThreadTally& tally = tallies[std::size_t(worker)];
+      std::optional<Tracer>& tracer = tracers[std::size_t(worker)];
+      if (!tracer)
+        tracer.emplace(make_tracer(Isect::kCounting ? base.with_counters(&tally.traversal) : base));
+      trace_tile(frame, tile, *tracer, tally.rays, grid);
+    });
+  });
+  const auto stop = std::chrono::steady_clock::now();
+
+  RenderResult result;
+  result.image = resolve_image(frame, grid);
+  result.render_ms = std::chrono::duration<double, std::milli>(stop - start).count();
+  for (const ThreadTally& t : tallies) {
+    result.rays += t.rays;
+    result.traversal += t.traversal;
+  }
+  return result;
+}
+
+}  // namespace tracer
