@@ -1,0 +1,41 @@
+#pragma once
+// Which tree a photon map is built as (the paper's optimisation 1 is `balanced`), and its knobs.
+
+#include <nlohmann/json.hpp>
+
+#include <cstdint>
+#include <string_view>
+
+namespace photon {
+
+/// The photon kd-tree variants.
+enum class PhotonTreeKind : std::uint8_t {
+  /// The paper's tree (Jensen 1996): every photon a node, split at the median of the cell's
+  /// longest axis, stored as a left-balanced heap (children of node i at 2i and 2i+1).
+  Balanced,
+  /// Unbalanced: split the cell's longest axis at its midpoint, sliding the plane to the nearest
+  /// photon when one side would be empty (Maneewongvatana and Mount 1999); photons in leaf
+  /// buckets of at most `leaf_size`.
+  SlidingMidpoint,
+  /// No tree: every photon tested. The reference of the tests and benchmarks.
+  BruteForce,
+};
+
+/// Knobs of a photon map's tree.
+struct PhotonTreeParams {
+  /// Tree variant (JSON: "balanced", "sliding_midpoint", "brute_force").
+  PhotonTreeKind photon_tree = PhotonTreeKind::Balanced;
+  /// Bucket trees: a cell with this many photons or fewer is a leaf, photons, 1..256.
+  int leaf_size = 8;
+};
+
+/// The JSON spelling of a variant.
+std::string_view name_of(PhotonTreeKind k);
+
+void to_json(nlohmann::json& j, const PhotonTreeParams& p);
+/// Reads the knobs; unknown keys, wrong types and out-of-range values throw accel::ConfigError.
+void from_json(const nlohmann::json& j, PhotonTreeParams& p);
+/// Throws accel::ConfigError naming the first knob out of range.
+void validate(const PhotonTreeParams& p);
+
+}  // namespace photon
