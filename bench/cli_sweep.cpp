@@ -30,7 +30,7 @@ struct SweepFlags {
   int repetitions = -1, warmup = -1, threads = -1;
   std::string resolution, out, jsonl, shard_text = "0/1", max_memory;
   std::string validate_resolution, integrator;
-  bool resume = false, quiet = false, spd = false;
+  bool resume = false, quiet = false, spd = false, list = false;
 };
 
 std::vector<nlohmann::json> to_values(const std::vector<int>& v) { return {v.begin(), v.end()}; }
@@ -105,6 +105,11 @@ int run(const SweepFlags& f) {
   const SweepDefinition d = definition_from_flags(f);
   RunOptions o;
   std::tie(o.shard_index, o.shard_count) = parse_shard(f.shard_text);
+  if (f.list) {
+    for (const auto& c : shard(expand(d), o.shard_index, o.shard_count))
+      std::printf("%s\n", c.key.c_str());
+    return 0;
+  }
   o.out_path = f.out.empty() ? "results/" + d.name + ".json" : f.out;
   if (o.shard_count > 1 && f.out.empty())
     o.out_path = "results/" + d.name + ".shard" + std::to_string(o.shard_index) + "of" +
@@ -162,6 +167,8 @@ void add_sweep_command(CLI::App& app, int& exit_code) {
   cmd->add_flag("--resume", flags->resume, "Keep the JSON Lines file's rows and skip those configurations");
   cmd->add_option("--shard", flags->shard_text, "Run shard I of N (0-based), e.g. 0/4");
   cmd->add_flag("--quiet", flags->quiet, "No progress lines");
+  cmd->add_flag("--list", flags->list,
+                "Check the definition, print the shard's configuration keys one a line, and exit");
   cmd->callback([flags, &exit_code] { exit_code = run(*flags); });
 }
 

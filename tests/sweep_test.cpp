@@ -12,10 +12,12 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <memory>
 #include <set>
 #include <string>
 #include <vector>
@@ -245,6 +247,35 @@ void write_tiny_definition(const fs::path& dir) {
       {"resolution", "12x9"},
       {"repetitions", 1},
       {"warmup", 0}}.dump();
+}
+
+TEST(SweepList, PrintsTheShardsKeysWithoutMeasuring) {
+  const fs::path dir = temp_dir("list");
+  write_tiny_definition(dir);
+  const auto all = bench::expand(bench::load_sweep_file((dir / "tiny.json").string()));
+  std::multiset<std::string> seen;
+  for (int i = 0; i < 3; ++i) {
+    const std::string cmd =
+        std::string(ACCELBENCH_CLI) + " sweep --config " + (dir / "tiny.json").string() +
+        " --out " + (dir / "never.json").string() + " --shard " + std::to_string(i) + "/3 --list";
+    std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen(cmd.c_str(), "r"), pclose);
+    ASSERT_TRUE(pipe);
+    std::vector<std::string> keys;
+    char line[4096];
+    while (std::fgets(line, sizeof line, pipe.get())) {
+      std::string key(line);
+      if (!key.empty() && key.back() == '\n') key.pop_back();
+      keys.push_back(key);
+    }
+    std::vector<std::string> expected;
+    for (const auto& c : bench::shard(all, i, 3)) expected.push_back(c.key);
+    EXPECT_EQ(keys, expected) << "shard " << i;
+    seen.insert(keys.begin(), keys.end());
+  }
+  EXPECT_EQ(seen.size(), all.size());
+  EXPECT_FALSE(fs::exists(dir / "never.json"));  // nothing measured, nothing written
+  EXPECT_FALSE(fs::exists(dir / "never.jsonl"));
+  fs::remove_all(dir);
 }
 
 TEST(SweepResume, AKilledRunResumesToTheSameRowsAsAnUninterruptedOne) {
