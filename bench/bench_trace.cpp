@@ -104,8 +104,8 @@ std::vector<Ray> spawned_rays(const tracer::Geometry& g, const std::vector<Ray>&
   for (std::size_t i = 0; i < primary.size(); ++i) {
     if (!hits[i].found() || hits[i].is_plane() || hits[i].prim >= g.spheres.size()) continue;
     const Ray& r = primary[i];
-    const Vec3 p = r.org + hits[i].t * r.dir;
-    const Vec3 n = tracer::normal_at(g.spheres[hits[i].prim], p);
+    const tracer::SurfacePoint sp = tracer::surface_point(g, r, hits[i]);
+    const Vec3 n = sp.n_geo;
     Vec3 d;
     if (k++ % 2 == 0) {
       d = r.dir - 2.0f * glm::dot(r.dir, n) * n;
@@ -113,10 +113,7 @@ std::vector<Ray> spawned_rays(const tracer::Geometry& g, const std::vector<Ray>&
       d = glm::normalize(Vec3(gauss(rng), gauss(rng), gauss(rng)));
       if (glm::dot(d, n) < 0.0f) d = -d;
     }
-    Ray s;
-    s.org = tracer::offset_ray_origin(p, n);
-    s.dir = d;
-    out.push_back(s);
+    out.push_back(tracer::spawn_ray(sp, d));
   }
   return out;
 }

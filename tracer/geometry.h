@@ -63,7 +63,8 @@ struct Geometry {
     return PrimitiveKind::Polygon;
   }
 
-  /// Bounding box of every bounded primitive, indexed by global id.
+  /// Bounding box of every bounded primitive, indexed by global id, rounded outward by one ulp
+  /// so that it contains the exact primitive at any coordinate.
   std::vector<accel::Aabb> primitive_bounds() const;
 
   /// Distance t > ray.tmin to bounded primitive `id`, or +inf. Pure function of (id, org, dir,

@@ -64,10 +64,9 @@ class SpdTracer {
     for (const PointLight& light : scene_->lights) {
       const Vec3 to_light = light.position - sp.p;
       if (!(glm::dot(ns, to_light) > 0.0f)) continue;  // normal faces away: no shadow ray
-      Ray shadow;
-      shadow.org = offset_ray_origin(sp.p, glm::dot(ng, to_light) > 0.0f ? ng : -ng);
-      shadow.dir = light.position - shadow.org;  // the light is at t = 1
-      shadow.tmax = 1.0f;
+      // Leaves on the light's side; t = 1 just short of the light.
+      const Ray shadow =
+          segment_to(offset_ray_origin(sp, glm::dot(ng, to_light) > 0.0f ? ng : -ng), light.position);
       counts.shadow++;
       if (isect_.occluded(shadow)) continue;
       color += nff_direct(s, ns, -d, glm::normalize(to_light), intensity_ * light.color);
@@ -77,7 +76,7 @@ class SpdTracer {
     if (s.ks > 0.0f || transmits) {
       const Vec3 r = reflect(d, ns);
       Ray reflected;
-      reflected.org = offset_ray_origin(sp.p, glm::dot(r, ng) >= 0.0f ? ng : -ng);
+      reflected.org = offset_ray_origin(sp, glm::dot(r, ng) >= 0.0f ? ng : -ng);
       reflected.dir = r;
       counts.reflection++;
       const Color rc = trace(reflected, depth + 1, counts);
@@ -90,7 +89,7 @@ class SpdTracer {
       Vec3 t;
       if (refract(d, n_against, eta, t)) {
         Ray refracted;
-        refracted.org = offset_ray_origin(sp.p, -ng);
+        refracted.org = offset_ray_origin(sp, -ng);
         refracted.dir = glm::normalize(t);
         counts.refraction++;
         color += s.transmittance * trace(refracted, depth + 1, counts);

@@ -75,10 +75,10 @@ class Whitted {
     Color radiance(0.0f);
     switch (m.type) {
       case MaterialType::Diffuse:
-        radiance = direct(sp.p, n, n_geo, -ray.dir, {m.albedo, m.specular, m.shininess}, counts);
+        radiance = direct(sp, n, n_geo, -ray.dir, {m.albedo, m.specular, m.shininess}, counts);
         break;
       case MaterialType::Mirror:
-        radiance = spawn(sp.p, n_geo, reflect(ray.dir, n), depth, weight * m.reflectance,
+        radiance = spawn(sp, n_geo, reflect(ray.dir, n), depth, weight * m.reflectance,
                          absorption, counts.reflection, counts) *
                    m.reflectance;
         break;
@@ -89,16 +89,16 @@ class Whitted {
       case MaterialType::Nff: {
         // The classic NFF surface: kd-scaled diffuse + ks-weighted highlight from the lights,
         // a mirror ray weighted ks, and a refracted ray weighted by the transmittance.
-        radiance = direct(sp.p, n, n_geo, -ray.dir, {m.kd * m.albedo, m.ks, m.shininess}, counts);
+        radiance = direct(sp, n, n_geo, -ray.dir, {m.kd * m.albedo, m.ks, m.shininess}, counts);
         if (m.ks > 0.0f)
-          radiance += m.ks * spawn(sp.p, n_geo, reflect(ray.dir, n), depth, weight * m.ks,
+          radiance += m.ks * spawn(sp, n_geo, reflect(ray.dir, n), depth, weight * m.ks,
                                    absorption, counts.reflection, counts);
         if (m.transmittance > 0.0f) {
           const float ior = m.ior > 0.0f ? m.ior : 1.0f;
           const Interface s = orient(ray.dir, front ? n : -n, ior);
           Vec3 t;
           if (refract(ray.dir, s.normal, s.eta_i / s.eta_t, t))
-            radiance += m.transmittance * spawn(sp.p, -n_geo, glm::normalize(t), depth,
+            radiance += m.transmittance * spawn(sp, -n_geo, glm::normalize(t), depth,
                                                 weight * m.transmittance, absorption,
                                                 counts.refraction, counts);
         }
@@ -108,14 +108,15 @@ class Whitted {
     return attenuation * radiance;
   }
 
-  /// Traces a secondary ray of direction `dir` from the surface point p, leaving on the side of
+  /// Traces a secondary ray of direction `dir` from the surface point sp, leaving on the side of
   /// `side` (a unit geometric normal), when the depth and weight limits allow; counts it.
-  Color spawn(const Vec3& p, const Vec3& side, const Vec3& dir, int depth, const Color& weight,
-              const Color& absorption, std::uint64_t& kind_count, RayCounts& counts) const {
+  Color spawn(const SurfacePoint& sp, const Vec3& side, const Vec3& dir, int depth,
+              const Color& weight, const Color& absorption, std::uint64_t& kind_count,
+              RayCounts& counts) const {
     const RenderSettings& rs = scene_->render;
     if (depth + 1 > rs.max_depth || !(path_weight(weight) >= rs.min_weight)) return Color(0.0f);
     Ray r;
-    r.org = offset_ray_origin(p, side);
+    r.org = offset_ray_origin(sp, side);
     r.dir = dir;
     kind_count++;
     return trace(r, depth + 1, weight, absorption, counts);
@@ -137,28 +138,26 @@ class Whitted {
     if (transmits) reflectance = fresnel_dielectric(s.cos_i, s.eta_i, s.eta_t);
     Color radiance(0.0f);
     if (reflectance > 0.0f)
-      radiance += reflectance * spawn(sp.p, n_geo, reflect(d, n), depth, weight * reflectance, here,
+      radiance += reflectance * spawn(sp, n_geo, reflect(d, n), depth, weight * reflectance, here,
                                       counts.reflection, counts);
     if (transmits && reflectance < 1.0f) {
       const float tr = 1.0f - reflectance;
-      radiance += tr * spawn(sp.p, -n_geo, glm::normalize(t), depth, weight * tr, beyond,
+      radiance += tr * spawn(sp, -n_geo, glm::normalize(t), depth, weight * tr, beyond,
                              counts.refraction, counts);
     }
     return radiance;
   }
 
-  /// Direct light from every point light through shadow rays, diffuse + Phong.
-  Color direct(const Vec3& p, const Vec3& n, const Vec3& n_geo, const Vec3& to_eye,
+  /// Direct light from every point light through shadow rays, diffuse + Phong. `n` and `n_geo`
+  /// face the arriving ray; shadow rays leave on n_geo's side.
+  Color direct(const SurfacePoint& sp, const Vec3& n, const Vec3& n_geo, const Vec3& to_eye,
                const DirectResponse& response, RayCounts& counts) const {
     Color radiance(0.0f);
-    const Vec3 origin = offset_ray_origin(p, n_geo);
+    const Vec3 origin = offset_ray_origin(sp, n_geo);
     for (const PointLight& light : scene_->lights) {
-      const Vec3 to_light = light.position - p;
+      const Vec3 to_light = light.position - sp.p;
       if (!(glm::dot(to_light, n) > 0.0f) || !(glm::dot(to_light, n_geo) > 0.0f)) continue;
-      Ray shadow;
-      shadow.org = origin;
-      shadow.dir = light.position - origin;  // t = 1 at the light
-      shadow.tmax = 1.0f;
+      const Ray shadow = segment_to(origin, light.position);  // t = 1 just short of the light
       counts.shadow++;
       if (isect_.occluded(shadow)) continue;
       const Vec3 l = glm::normalize(to_light);
