@@ -68,12 +68,14 @@ void expect_every_structure_equals_naive(const tracer::Scene& scene) {
   options.height = 72;
   options.threads = 2;
   const tracer::RenderResult reference =
-      tracer::render(scene, accel::make_accel("naive", {}, boxes), options);
+      tracer::render(scene, accel::make_accel("naive", {}, boxes), options,
+                     tracer::whitted_integrator());
   ASSERT_GT(reference.rays.eye_hits, 500u);
   for (const Variant& v : variants()) {
     SCOPED_TRACE(v.accel + " " + v.params.dump());
     const tracer::RenderResult result =
-        tracer::render(scene, accel::make_accel(v.accel, v.params, boxes), options);
+        tracer::render(scene, accel::make_accel(v.accel, v.params, boxes), options,
+                       tracer::whitted_integrator());
     EXPECT_TRUE(result.image == reference.image);
     EXPECT_TRUE(result.rays == reference.rays);
   }

@@ -178,7 +178,8 @@ tracer::RenderResult render_naive(const tracer::Scene& scene) {
   const auto boxes = scene.geometry.primitive_bounds();
   tracer::RenderOptions options;
   options.threads = 2;
-  return tracer::render(scene, accel::make_accel("naive", {}, boxes), options);
+  return tracer::render(scene, accel::make_accel("naive", {}, boxes), options,
+                        tracer::whitted_integrator());
 }
 
 TEST(OffsetRay, ContactShadowAndMirrorNeighbourSurviveAt1e5) {
