@@ -161,7 +161,7 @@ TEST(Render, WindowRendersThatPartOfTheFullImage) {
   options.window = {5, 7, 40, 13};
   EXPECT_THROW(tracer::render(scene, a, options, tracer::whitted_integrator()),
                std::invalid_argument);
-  EXPECT_THROW(tracer::render(scene, a, {}, tracer::whitted_integrator(), {{"max_depth", 3}}),
+  EXPECT_THROW(tracer::render(scene, a, {}, tracer::whitted_integrator(), {{"no_such_knob", 3}}),
                std::invalid_argument);
 }
 

@@ -13,6 +13,8 @@ namespace {
 
 /// Largest image side, pixels (the scene format's limit).
 constexpr int kMaxImageSide = 65536;
+/// Most samples per pixel (the scene format's limit).
+constexpr int kMaxSamplesPerPixel = 65536;
 
 std::uint64_t mix64(std::uint64_t z) {  // splitmix64 finaliser
   z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
@@ -40,7 +42,7 @@ PixelWindow resolve_window(const PixelWindow& w, int width, int height) {
 
 namespace render_frame_detail {
 
-Frame make_frame(const Scene& scene, const RenderOptions& options, FilmSampling film) {
+Frame make_frame(const Scene& scene, const RenderOptions& options, FilmSpec film) {
   if (options.threads < 0)
     throw std::invalid_argument("threads must be >= 0, got " + std::to_string(options.threads));
   if (options.width < 0 || options.height < 0)
@@ -52,15 +54,21 @@ Frame make_frame(const Scene& scene, const RenderOptions& options, FilmSampling 
     throw std::invalid_argument("image size must be in [1, " + std::to_string(kMaxImageSide) +
                                 "] per side, got " + std::to_string(width) + "x" +
                                 std::to_string(height));
+  if (film.samples_per_pixel < 0 || film.samples_per_pixel > kMaxSamplesPerPixel)
+    throw std::invalid_argument("samples per pixel must be in [1, " +
+                                std::to_string(kMaxSamplesPerPixel) + "], got " +
+                                std::to_string(film.samples_per_pixel));
   Frame f{PinholeCamera(scene.camera, width, height), resolve_window(options.window, width, height),
-          film};
-  const int extra = film == FilmSampling::PixelCorners ? 1 : 0;
+          film.sampling};
+  const int extra = film.sampling == FilmSampling::PixelCorners ? 1 : 0;
   f.grid_w = f.window.x1 - f.window.x0 + extra;
   f.grid_h = f.window.y1 - f.window.y0 + extra;
   f.tiles_x = (f.grid_w + kTileSize - 1) / kTileSize;
   f.tiles = f.tiles_x * ((f.grid_h + kTileSize - 1) / kTileSize);
   f.threads = std::min(resolve_threads(options.threads), f.tiles);
-  f.spp = std::max(1, scene.camera.samples_per_pixel);
+  f.spp = film.samples_per_pixel > 0 ? film.samples_per_pixel
+                                     : std::max(1, scene.camera.samples_per_pixel);
+  f.seed = film.seed;
   return f;
 }
 
@@ -97,15 +105,16 @@ nlohmann::json no_params(std::string_view integrator, const nlohmann::json& give
   return nlohmann::json::object();
 }
 
-void sample_offset(int x, int y, int s, int spp, float& jx, float& jy) {
+void sample_offset(int x, int y, int s, int spp, float& jx, float& jy, std::uint64_t seed) {
   if (spp <= 1) {
     jx = jy = 0.5f;
     return;
   }
   const int m = int(std::ceil(std::sqrt(double(spp))));  // strata per row
   const int rows = (spp + m - 1) / m;
-  const std::uint64_t key =
+  std::uint64_t key =
       (std::uint64_t(std::uint32_t(y)) << 32 | std::uint32_t(x)) * 0x9e3779b97f4a7c15ull;
+  if (seed != 0) key ^= mix64(seed ^ 0xd1b54a32d192ed03ull);  // seed 0: the historical pattern
   const std::uint64_t r = mix64(key ^ mix64(std::uint64_t(s) + 1));
   jx = (float(s % m) + unit_float(r)) / float(m);
   jy = (float(s / m) + unit_float(mix64(r))) / float(rows);

@@ -67,7 +67,8 @@ RenderResult render(const Scene& scene, const accel::AnyAccel& accel, const Rend
                     const Integrator& integrator,
                     const nlohmann::json& params = nlohmann::json::object());
 
-/// Whitted ray tracing (tracer/whitted.h): samples_per_pixel jittered camera rays per pixel.
+/// Whitted ray tracing (tracer/whitted.h): samples_per_pixel jittered camera rays per pixel;
+/// knobs max_depth, min_weight, spp and seed (tracer/whitted_params.h).
 const Integrator& whitted_integrator();
 
 /// Eric Haines' SPD test rules (tracer/spd_render.h): rays at pixel corners, tree depth 5.
@@ -79,7 +80,8 @@ nlohmann::json no_params(std::string_view integrator, const nlohmann::json& give
 
 /// Sub-pixel offset in [0, 1)^2 of sample `s` of `spp` in pixel (x, y): stratified on a
 /// ceil(sqrt(spp)) grid and jittered by a hash of (x, y, s), so it is the same on every run and
-/// thread. A single sample sits at the pixel centre.
-void sample_offset(int x, int y, int s, int spp, float& jx, float& jy);
+/// thread. A single sample sits at the pixel centre. Another `seed` gives another, independent
+/// jitter (seed 0 is the pattern of every render made before seeds existed).
+void sample_offset(int x, int y, int s, int spp, float& jx, float& jy, std::uint64_t seed = 0);
 
 }  // namespace tracer

@@ -22,6 +22,17 @@ enum class FilmSampling : std::uint8_t {
   PixelCorners,  ///< One ray per pixel corner; each pixel is the mean of its four (SPD rules).
 };
 
+/// How a frame samples its film: the sampling rule and, for PixelSamples, how many jittered rays
+/// per pixel with which jitter seed. Made implicitly from a FilmSampling (the scene's spp, seed 0).
+struct FilmSpec {
+  FilmSampling sampling = FilmSampling::PixelSamples;  ///< Which points of the film are traced.
+  int samples_per_pixel = 0;  ///< PixelSamples: rays per pixel, >= 1; 0 = the scene camera's.
+  std::uint64_t seed = 0;     ///< PixelSamples: seed of the sub-pixel jitter (sample_offset).
+
+  FilmSpec(FilmSampling s, int spp = 0, std::uint64_t jitter_seed = 0)  // NOLINT: implicit
+      : sampling(s), samples_per_pixel(spp), seed(jitter_seed) {}
+};
+
 namespace render_frame_detail {
 
 /// Tile edge, in film samples: small enough to balance the threads, large enough to share caches.
@@ -38,6 +49,7 @@ struct Frame {
   int tiles = 0;            ///< Tiles in all.
   int threads = 1;          ///< Worker threads.
   int spp = 1;              ///< Samples per pixel (PixelSamples).
+  std::uint64_t seed = 0;   ///< Seed of the sub-pixel jitter (PixelSamples).
 };
 
 /// Per-worker tallies, summed after the join (integer sums: order does not matter).
@@ -47,7 +59,7 @@ struct ThreadTally {
 };
 
 /// The frame of `options` on `scene`; throws std::invalid_argument naming a bad option.
-Frame make_frame(const Scene& scene, const RenderOptions& options, FilmSampling film);
+Frame make_frame(const Scene& scene, const RenderOptions& options, FilmSpec film);
 
 /// The image from the grid of film samples: the grid itself, or every pixel the mean of its four
 /// corners.
@@ -70,7 +82,7 @@ void trace_tile(const Frame& f, int tile, const Tracer& tracer, RayCounts& rays,
         Color sum(0.0f);
         for (int s = 0; s < f.spp; ++s) {
           float jx = 0.5f, jy = 0.5f;
-          sample_offset(x, y, s, f.spp, jx, jy);
+          sample_offset(x, y, s, f.spp, jx, jy, f.seed);
           sum += tracer.trace_eye(f.camera.primary_ray(x, y, jx, jy), rays);
         }
         c = f.spp == 1 ? sum : sum * inv_spp;
@@ -88,7 +100,7 @@ void trace_tile(const Frame& f, int tile, const Tracer& tracer, RayCounts& rays,
 /// summed counts are the same at any thread count. A worker's exception is rethrown here.
 template <class MakeTracer>
 RenderResult render_frame(const Scene& scene, const accel::AnyAccel& accel,
-                          const RenderOptions& options, FilmSampling film,
+                          const RenderOptions& options, FilmSpec film,
                           MakeTracer&& make_tracer) {
   using namespace render_frame_detail;
   const Frame frame = make_frame(scene, options, film);

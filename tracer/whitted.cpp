@@ -1,6 +1,7 @@
 #include "whitted.h"
 
 #include "render_frame.h"
+#include "whitted_params.h"
 
 namespace tracer {
 
@@ -36,14 +37,26 @@ Color diffuse_phong_brdf(const DirectResponse& r, const Vec3& n, const Vec3& to_
 namespace {
 
 RenderResult render_whitted(const Scene& scene, const accel::AnyAccel& accel,
-                            const RenderOptions& options, const nlohmann::json&) {
-  return render_frame(scene, accel, options, FilmSampling::PixelSamples,
-                      [&scene](const auto& isect) {
-                        return Whitted<std::decay_t<decltype(isect)>>(scene, isect);
-                      });
+                            const RenderOptions& options, const nlohmann::json& knobs) {
+  const WhittedParams p = whitted_params_from_json(knobs);
+  const RenderSettings limits = p.limits(scene);
+  const int spp = p.samples_per_pixel(scene);
+  RenderResult r = render_frame(scene, accel, options,
+                                FilmSpec(FilmSampling::PixelSamples, spp, p.seed),
+                                [&scene, &limits](const auto& isect) {
+                                  return Whitted<std::decay_t<decltype(isect)>>(scene, isect, limits);
+                                });
+  // The settings in effect, the scene's where no knob was given.
+  r.stats["effective"] = {{"max_depth", limits.max_depth},
+                          {"min_weight", limits.min_weight},
+                          {"spp", spp},
+                          {"seed", p.seed}};
+  return r;
 }
 
-nlohmann::json whitted_params(const nlohmann::json& given) { return no_params("whitted", given); }
+nlohmann::json whitted_params(const nlohmann::json& given) {
+  return to_json(whitted_params_from_json(given));
+}
 
 }  // namespace
 

@@ -43,8 +43,11 @@ Color diffuse_phong_brdf(const DirectResponse& r, const Vec3& n, const Vec3& to_
 template <class Isect>
 class Whitted {
  public:
-  /// An integrator over `scene` (which must outlive it) querying geometry through `isect`.
-  Whitted(const Scene& scene, const Isect& isect) : scene_(&scene), isect_(isect) {}
+  /// An integrator over `scene` (which must outlive it) querying geometry through `isect`, with
+  /// the scene's recursion limits or `limits` in their place.
+  Whitted(const Scene& scene, const Isect& isect) : Whitted(scene, isect, scene.render) {}
+  Whitted(const Scene& scene, const Isect& isect, const RenderSettings& limits)
+      : scene_(&scene), isect_(isect), limits_(limits) {}
 
   /// Radiance arriving along a camera ray (unit direction); counts every ray traced.
   Color trace_eye(const Ray& ray, RayCounts& counts) const {
@@ -113,7 +116,7 @@ class Whitted {
   Color spawn(const SurfacePoint& sp, const Vec3& side, const Vec3& dir, int depth,
               const Color& weight, const Color& absorption, std::uint64_t& kind_count,
               RayCounts& counts) const {
-    const RenderSettings& rs = scene_->render;
+    const RenderSettings& rs = limits_;
     if (depth + 1 > rs.max_depth || !(path_weight(weight) >= rs.min_weight)) return Color(0.0f);
     Ray r;
     r.org = offset_ray_origin(sp, side);
@@ -169,6 +172,7 @@ class Whitted {
 
   const Scene* scene_;
   Isect isect_;
+  RenderSettings limits_;
 };
 
 }  // namespace tracer

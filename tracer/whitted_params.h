@@ -1,0 +1,40 @@
+#pragma once
+// The Whitted integrator's accuracy knobs: recursion depth, path-weight cut-off, samples per
+// pixel and the seed of the sample jitter. Each defaults to the scene's own setting, so a render
+// without knobs is the scene as written; a knob given overrides the scene for that render. These
+// are the knobs `accelbench fronts` trades against time (docs/accuracy.md).
+
+#include "scene.h"
+
+#include <nlohmann/json.hpp>
+
+#include <cstdint>
+
+namespace tracer {
+
+struct WhittedParams {
+  /// Maximum recursion depth (camera ray = 1), in [1, 1000]; 0 = the scene's render.max_depth.
+  int max_depth = 0;
+  /// Paths whose weight falls below this are cut, in [0, 1]; negative = the scene's min_weight.
+  double min_weight = -1.0;
+  /// Camera rays per pixel, in [1, 65536]; 0 = the scene camera's samples_per_pixel.
+  int spp = 0;
+  /// Seed of the stratified sub-pixel jitter; 0 = the fixed pattern every earlier render used.
+  /// Renders with other seeds are independent estimates of the same image (spp > 1).
+  std::uint64_t seed = 0;
+
+  /// The recursion limits of `scene` with the knobs given here applied.
+  RenderSettings limits(const Scene& scene) const;
+  /// Samples per pixel on `scene`: the knob, or the camera's.
+  int samples_per_pixel(const Scene& scene) const;
+};
+
+/// Every knob, spelled out.
+nlohmann::json to_json(const WhittedParams& p);
+
+/// The defaults with the knobs of `j` (an object, or null) applied. Throws
+/// std::invalid_argument "whitted: ..." naming an unknown knob, a wrong type or a value out of
+/// range.
+WhittedParams whitted_params_from_json(const nlohmann::json& j);
+
+}  // namespace tracer
