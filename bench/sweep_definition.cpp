@@ -139,6 +139,42 @@ KnobValues parse_knobs(const json& j, const std::string& pointer) {
   return knobs;
 }
 
+/// Integrator knob groups: an object (one group) or a non-empty array of objects. Every knob must
+/// be one the integrator has, and every value one it accepts.
+std::vector<KnobValues> parse_integrator_knobs(const json& j, const std::string& pointer,
+                                               const std::string& integrator_name) {
+  const tracer::Integrator& integrator = integrator_named(integrator_name, "integrator");
+  const json known = integrator.params(json::object());
+  auto group = [&](const json& g, const std::string& p) {
+    KnobValues knobs = parse_knobs(g, p);
+    for (const auto& [k, values] : knobs) {
+      if (!known.contains(k)) {
+        std::string names;
+        for (const auto& [name, v] : known.items()) names += (names.empty() ? "" : ", ") + name;
+        fail(child(p, k), "integrator " + integrator_name + " has no knob '" + k + "' (its knobs: " +
+                              (names.empty() ? "none" : names) + ")");
+      }
+      for (std::size_t i = 0; i < values.size(); ++i) {
+        try {
+          integrator.params(json{{k, values[i]}});
+        } catch (const std::exception& e) {
+          fail(child(child(p, k), i), e.what());
+        }
+      }
+    }
+    if (knobs.empty()) fail(p, "must name at least one integrator knob");
+    return knobs;
+  };
+  std::vector<KnobValues> groups;
+  if (j.is_array()) {
+    if (j.empty()) fail(pointer, "must list at least one group of knobs");
+    for (std::size_t i = 0; i < j.size(); ++i) groups.push_back(group(j[i], child(pointer, i)));
+  } else {
+    groups.push_back(group(j, pointer));
+  }
+  return groups;
+}
+
 json knobs_to_json(const KnobValues& knobs) {
   json j = json::object();
   for (const auto& [k, v] : knobs) j[k] = v;
@@ -206,7 +242,8 @@ std::optional<std::vector<std::string>> structure_knobs(const std::string& struc
 SweepDefinition parse_sweep_definition(const json& j) {
   if (!j.is_object()) fail("", "a sweep definition must be a JSON object");
   require_keys(j, "", {"name", "description", "scenes", "structures", "knobs", "resolution", "threads",
-                       "repetitions", "warmup", "max_memory_bytes", "integrator", "mode", "validate_resolution"});
+                       "repetitions", "warmup", "max_memory_bytes", "integrator", "mode", "validate_resolution",
+                       "integrator_knobs", "fronts"});
   SweepDefinition d;
   if (j.contains("name")) {
     d.name = get_string(j["name"], "/name");
@@ -248,6 +285,12 @@ SweepDefinition parse_sweep_definition(const json& j) {
     d.integrator = get_string(j[key], where);
     if (!find_integrator(d.integrator))
       fail(where, "unknown integrator " + j[key].dump() + " (known: " + integrator_names() + ")");
+  }
+  if (j.contains("integrator_knobs"))
+    d.integrator_knobs = parse_integrator_knobs(j["integrator_knobs"], "/integrator_knobs", d.integrator);
+  if (j.contains("fronts")) {
+    if (!j["fronts"].is_object()) fail("/fronts", "must be an object, got " + j["fronts"].dump());
+    d.fronts = j["fronts"];
   }
   if (j.contains("validate_resolution")) {
     const json& r = j["validate_resolution"];
@@ -347,13 +390,51 @@ json to_json(const SweepDefinition& d) {
   if (d.integrator != "whitted") j["integrator"] = d.integrator;
   if (d.validates_apart())
     j["validate_resolution"] = std::to_string(d.validate_width) + "x" + std::to_string(d.validate_height);
+  if (!d.integrator_knobs.empty()) {
+    json groups = json::array();
+    for (const auto& g : d.integrator_knobs) groups.push_back(knobs_to_json(g));
+    j["integrator_knobs"] = groups;
+  }
+  if (!d.fronts.is_null()) j["fronts"] = d.fronts;
   return j;
 }
 
-std::string config_key(const std::string& scene, const std::string& structure, const json& params) {
+std::string config_key(const std::string& scene, const std::string& structure, const json& params,
+                       const json& integrator_params) {
   // nlohmann::json objects keep keys sorted, so dump() is canonical.
-  return scene + "|" + structure + "|" + (params.is_null() ? json::object() : params).dump();
+  std::string key = scene + "|" + structure + "|" + (params.is_null() ? json::object() : params).dump();
+  if (!integrator_params.is_null() && !integrator_params.empty()) key += "|" + integrator_params.dump();
+  return key;
 }
+
+namespace {
+
+/// Every combination of `knobs` (an odometer over the value lists in sorted knob order), as
+/// objects; one empty object when there are no knobs.
+std::vector<json> cross(const KnobValues& knobs) {
+  std::vector<std::pair<std::string, const std::vector<json>*>> axes;
+  for (const auto& [k, values] : knobs) axes.emplace_back(k, &values);
+  std::vector<std::size_t> at(axes.size(), 0);
+  std::vector<json> out;
+  while (true) {
+    json params = json::object();
+    for (std::size_t a = 0; a < axes.size(); ++a) params[axes[a].first] = (*axes[a].second)[at[a]];
+    out.push_back(std::move(params));
+    // Advance the last axis, carrying into earlier ones; done when the first one wraps.
+    bool wrapped = true;
+    for (std::size_t a = axes.size(); a-- > 0;) {
+      if (++at[a] < axes[a].second->size()) {
+        wrapped = false;
+        break;
+      }
+      at[a] = 0;
+    }
+    if (wrapped) break;
+  }
+  return out;
+}
+
+}  // namespace
 
 std::vector<SweepConfig> expand(const SweepDefinition& d) {
   std::vector<SweepConfig> out;
@@ -362,6 +443,13 @@ std::vector<SweepConfig> expand(const SweepDefinition& d) {
   std::map<std::string, std::optional<std::vector<std::string>>> probed;
   for (const auto& s : d.structures)
     if (!probed.count(s.name)) probed[s.name] = structure_knobs(s.name);
+  // The integrator settings: every group crossed, joined in group order, repeats dropped.
+  std::vector<json> integrator_settings;
+  for (const auto& g : d.integrator_knobs)
+    for (json& ip : cross(g))
+      if (std::find(integrator_settings.begin(), integrator_settings.end(), ip) == integrator_settings.end())
+        integrator_settings.push_back(std::move(ip));
+  if (integrator_settings.empty()) integrator_settings.push_back(json::object());
 
   for (std::size_t si = 0; si < d.scenes.size(); ++si) {
     for (const auto& s : d.structures) {
@@ -369,27 +457,12 @@ std::vector<SweepConfig> expand(const SweepDefinition& d) {
       if (const auto& has = probed[s.name])
         for (const auto& [k, values] : d.knobs)
           if (!knobs.count(k) && std::find(has->begin(), has->end(), k) != has->end()) knobs[k] = values;
-      // Cross product in sorted knob order: an odometer over the value lists.
-      std::vector<std::pair<std::string, const std::vector<json>*>> axes;
-      for (const auto& [k, values] : knobs) axes.emplace_back(k, &values);
-      std::vector<std::size_t> at(axes.size(), 0);
-      while (true) {
-        json params = json::object();
-        for (std::size_t a = 0; a < axes.size(); ++a) params[axes[a].first] = (*axes[a].second)[at[a]];
-        std::string key = config_key(d.scenes[si].name, s.name, params);
-        if (seen.insert(key).second)
-          out.push_back(SweepConfig{out.size(), si, s.name, std::move(params), std::move(key)});
-        // Advance the last axis, carrying into earlier ones; done when the first one wraps.
-        bool wrapped = true;
-        for (std::size_t a = axes.size(); a-- > 0;) {
-          if (++at[a] < axes[a].second->size()) {
-            wrapped = false;
-            break;
-          }
-          at[a] = 0;
+      for (const json& params : cross(knobs))
+        for (const json& ip : integrator_settings) {
+          std::string key = config_key(d.scenes[si].name, s.name, params, ip);
+          if (seen.insert(key).second)
+            out.push_back(SweepConfig{out.size(), si, s.name, params, ip, std::move(key)});
         }
-        if (wrapped) break;
-      }
     }
   }
   return out;

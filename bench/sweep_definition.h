@@ -55,6 +55,13 @@ struct SweepDefinition {
   int width = 0;                        ///< Image width, pixels; 0 = each scene's own.
   int height = 0;                       ///< Image height, pixels; 0 = each scene's own.
   std::string integrator = "whitted";   ///< Integrator of every configuration (bench/integrators.h).
+  /// The integrator's knobs to vary, as groups: each group's knobs are crossed with each other,
+  /// and the groups are joined (one group per knob varies one knob at a time). Empty: the
+  /// integrator's defaults only. JSON key "integrator_knobs": one object or an array of them.
+  std::vector<KnobValues> integrator_knobs;
+  /// What `accelbench fronts` adds to a sweep (reference, metric, seeds); null for a plain sweep.
+  /// Kept here so that --resume refuses a file written with other front settings.
+  nlohmann::json fronts;
   int validate_width = 0;               ///< Width naive is rendered and compared at; 0 = the timed width.
   int validate_height = 0;              ///< Height naive is rendered and compared at; 0 = the timed height.
 
@@ -72,6 +79,8 @@ struct SweepConfig {
   std::size_t scene = 0;        ///< Index into SweepDefinition::scenes.
   std::string structure;        ///< Factory name.
   nlohmann::json params;        ///< Requested knobs (an object; empty for naive or defaults).
+  /// Requested integrator knobs (an object; empty = the integrator's defaults).
+  nlohmann::json integrator_params = nlohmann::json::object();
   std::string key;              ///< Canonical key: equal keys are the same configuration.
 };
 
@@ -89,9 +98,11 @@ nlohmann::json to_json(const SceneSpec& s);
 /// Parses a --scenes item: a generator name, "generator:count", or a path to a scene file.
 SceneSpec parse_scene_item(const std::string& item);
 
-/// Canonical configuration key: scene name, structure and the sorted requested knobs.
+/// Canonical configuration key: scene name, structure and the sorted requested knobs, then the
+/// sorted integrator knobs when there are any (so keys without them are as they always were).
 std::string config_key(const std::string& scene, const std::string& structure,
-                       const nlohmann::json& params);
+                       const nlohmann::json& params,
+                       const nlohmann::json& integrator_params = nlohmann::json::object());
 
 /// Knob names a structure accepts, probed from the factory's params_of on zero primitives;
 /// nullopt when the structure cannot be built here (unknown name, or Embree not found).
@@ -100,8 +111,9 @@ std::optional<std::vector<std::string>> structure_knobs(const std::string& struc
 /// Parses "WxH" (both > 0); throws SweepError naming `what`.
 std::pair<int, int> parse_resolution(const std::string& text, const std::string& what);
 
-/// Every configuration: scenes x structures x (knobs the structure has), naive once per scene.
-/// Knobs a structure lacks are not crossed for it; duplicates are dropped.
+/// Every configuration: scenes x structures x (knobs the structure has) x (each integrator knob
+/// group crossed), naive once per scene and integrator setting. Knobs a structure lacks are not
+/// crossed for it; duplicates are dropped.
 std::vector<SweepConfig> expand(const SweepDefinition& d);
 
 /// Shard i of n (0-based): the configurations whose index is i modulo n. Disjoint, and their

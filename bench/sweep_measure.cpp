@@ -20,14 +20,14 @@ double seconds_since(Clock::time_point t0) {
 
 /// One render of `scene` with the sweep's integrator.
 tracer::RenderResult render_with(const tracer::Scene& scene, const accel::AnyAccel& built,
-                                 const std::string& integrator, int width, int height, int threads,
-                                 bool counting) {
+                                 const MeasureOptions& options, int width, int height, bool counting) {
   tracer::RenderOptions o;
-  o.threads = threads;
+  o.threads = options.threads;
   o.count_traversal = counting;
   o.width = width;
   o.height = height;
-  return tracer::render(scene, built, o, integrator_named(integrator, "integrator"));
+  return tracer::render(scene, built, o, integrator_named(options.integrator, "integrator"),
+                        options.integrator_params);
 }
 
 /// The reason a check against naive fails, or "" when hash and ray counts agree.
@@ -85,10 +85,10 @@ Measurement measure(const tracer::Scene& scene, std::span<const accel::Aabb> box
   m.build_stats = accel::stats_of(built);
 
   // One timed call of the renderer; the hash of every image must agree with the first.
+  std::optional<tracer::Image> image;  // kept for the inspector
   auto render_once = [&](bool counting) -> std::optional<double> {
     const auto t0 = Clock::now();
-    tracer::RenderResult r =
-        render_with(scene, built, options.integrator, options.width, options.height, options.threads, counting);
+    tracer::RenderResult r = render_with(scene, built, options, options.width, options.height, counting);
     const double s = seconds_since(t0);
     m.spent_trace_s += s;
     const std::uint64_t h = r.image.content_hash();
@@ -96,6 +96,7 @@ Measurement measure(const tracer::Scene& scene, std::span<const accel::Aabb> box
       m.image_hash = h;
       m.traversal = r.traversal;
       m.rays = r.rays;
+      if (options.inspect) image = std::move(r.image);
     } else if (h != m.image_hash) {
       m.status = RowStatus::Error;
       m.reason = "image hash " + tracer::hash_hex(h) + " of a timed render differs from its counting pass's " +
@@ -109,8 +110,8 @@ Measurement measure(const tracer::Scene& scene, std::span<const accel::Aabb> box
     if (options.validate_width > 0) {
       // The check against naive at the validation resolution, untimed.
       const auto t0 = Clock::now();
-      const tracer::RenderResult r = render_with(scene, built, options.integrator, options.validate_width,
-                                                 options.validate_height, options.threads, false);
+      const tracer::RenderResult r =
+          render_with(scene, built, options, options.validate_width, options.validate_height, false);
       m.spent_trace_s += seconds_since(t0);
       m.validation = Validation{options.validate_width, options.validate_height, r.image.content_hash(), r.rays};
       const std::string at =
@@ -141,6 +142,7 @@ Measurement measure(const tracer::Scene& scene, std::span<const accel::Aabb> box
       samples.push_back(*ms);
     }
     m.render_ms = summarize(samples);
+    if (options.inspect) options.inspect(scene, built, options, *image, m);
   } catch (const std::bad_alloc&) {
     m.status = RowStatus::Failed;
     m.reason = structure + ": out of memory while rendering";

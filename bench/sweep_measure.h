@@ -6,12 +6,14 @@
 #include "sweep_stats.h"
 
 #include "accel/accel.h"
+#include "tracer/image.h"
 #include "tracer/ray_counts.h"
 #include "tracer/scene.h"
 
 #include <nlohmann/json.hpp>
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <span>
 #include <string>
@@ -28,6 +30,17 @@ enum class RowStatus {
 /// "ok", "failed" or "error".
 const char* status_name(RowStatus s);
 
+struct Measurement;
+struct MeasureOptions;
+
+/// Called by measure() once a configuration is validated and timed, with the scene, the built
+/// structure, the options (integrator knobs included) and the rendered image. It may render more
+/// (adding that time to m.spent_trace_s) and adds what it finds to m.extra. A throw makes the row
+/// failed with its message.
+using Inspector = std::function<void(const tracer::Scene& scene, const accel::AnyAccel& built,
+                                     const MeasureOptions& options, const tracer::Image& image,
+                                     Measurement& m)>;
+
 /// How to render and time a configuration.
 struct MeasureOptions {
   int width = 0;                 ///< Image width, pixels; 0 = the scene's.
@@ -37,6 +50,9 @@ struct MeasureOptions {
   int warmup = 1;                ///< Untimed renders before them.
   accel::BuildLimits limits;     ///< Build memory budget.
   std::string integrator = "whitted";  ///< Integrator (bench/integrators.h).
+  /// The integrator's knobs (an object; empty = its defaults).
+  nlohmann::json integrator_params = nlohmann::json::object();
+  Inspector inspect;             ///< Optional: sees every ok configuration's image (fronts).
   int validate_width = 0;        ///< Resolution of the check against naive; 0 = the timed one.
   int validate_height = 0;       ///< Height of that check, pixels.
 };
@@ -73,6 +89,8 @@ struct Measurement {
   std::optional<Validation> validation;  ///< The separate check against naive, when one was made.
   double spent_build_s = 0.0;            ///< Wall time inside make_accel, s (overhead accounting).
   double spent_trace_s = 0.0;            ///< Wall time inside every render call, s (overhead accounting).
+  /// What the inspector found (MeasureOptions::inspect), merged into the row; an object.
+  nlohmann::json extra = nlohmann::json::object();
 
   /// Rays per second at the median render time, shadow rays included (0 when not timed).
   double rays_per_s() const;

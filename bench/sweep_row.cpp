@@ -20,12 +20,17 @@ nlohmann::json row_head(const SweepConfig& config, const SceneSpec& scene, const
           {"warmup", options.warmup}};
 }
 
+void add_integrator_params(nlohmann::json& row, const SweepConfig& config) {
+  if (!config.integrator_params.empty()) row["integrator_params"] = config.integrator_params;
+}
+
 }  // namespace
 
 nlohmann::json make_row(const SweepConfig& config, const SceneSpec& scene, std::uint64_t primitives,
                         const MeasureOptions& options, const Measurement& m,
                         const std::optional<Reference>& reference) {
   nlohmann::json row = row_head(config, scene, options);
+  add_integrator_params(row, config);
   row["primitives"] = primitives;
   row["status"] = status_name(m.status);
   if (m.status != RowStatus::Ok) row["reason"] = m.reason;
@@ -70,12 +75,14 @@ nlohmann::json make_row(const SweepConfig& config, const SceneSpec& scene, std::
     else if (reference && m.render_ms->median > 0.0)
       row["speedup"] = reference->render_ms / m.render_ms->median;
   }
+  for (const auto& [key, value] : m.extra.items()) row[key] = value;
   return row;
 }
 
 nlohmann::json make_failed_row(const SweepConfig& config, const SceneSpec& scene,
                                const MeasureOptions& options, const std::string& reason) {
   nlohmann::json row = row_head(config, scene, options);
+  add_integrator_params(row, config);
   row["status"] = status_name(RowStatus::Failed);
   row["reason"] = reason;
   return row;

@@ -152,8 +152,10 @@ RunSummary run_sweep(const SweepDefinition& definition, const RunOptions& option
     if (options.progress) {
       const double elapsed = std::chrono::duration<double>(Clock::now() - t_start).count();
       const double left = elapsed / double(summary.measured) * double(total - summary.measured);
+      std::string knobs = c.params.dump();
+      if (!c.integrator_params.empty()) knobs.append(" ").append(c.integrator_params.dump());
       std::fprintf(stderr, "sweep: [%zu/%zu] %s %s %s: %s | %s elapsed, ~%s left\n", summary.measured, total,
-                   definition.scenes[c.scene].name.c_str(), c.structure.c_str(), c.params.dump().c_str(),
+                   definition.scenes[c.scene].name.c_str(), c.structure.c_str(), knobs.c_str(),
                    what.c_str(), clock_text(elapsed).c_str(), clock_text(left).c_str());
     }
     if (kill_after && summary.measured == kill_after) std::raise(kill_signal());
@@ -187,45 +189,69 @@ RunSummary run_sweep(const SweepDefinition& definition, const RunOptions& option
     const std::vector<accel::Aabb> boxes = scene->geometry.primitive_bounds();
     const std::uint64_t primitives = boxes.size();
 
-    // The reference: naive on this scene, from an earlier row measured on this node, this
-    // shard's naive row, or a measurement made only for validation and speedups. A speedup is
-    // never a ratio of times from two nodes: resumed on another node, naive is measured again.
-    const std::string naive_key = config_key(spec.name, "naive", json::object());
-    std::optional<Reference> reference;
-    std::string no_reference;
-    if (const auto it = done.find(naive_key); it != done.end() && measured_on(it->second) == node)
-      reference = reference_from_row(it->second);
-    if (!reference) {
-      if (options.progress) std::fprintf(stderr, "sweep: %s: measuring naive, the reference\n", spec.name.c_str());
-      const Measurement naive = measure(*scene, boxes, "naive", json::object(), naive_mo, std::nullopt);
+    // The references: naive on this scene with each integrator setting, from an earlier row
+    // measured on this node, this shard's naive row, or a measurement made only for validation
+    // and speedups. A speedup is never a ratio of times from two nodes: resumed on another node,
+    // naive is measured again.
+    struct NaiveReference {
+      std::optional<Reference> reference;
+      std::string why_not;  // when there is none
+    };
+    std::map<std::string, NaiveReference> references;  // by integrator params
+    std::set<std::size_t> emitted;                      // naive rows written while measuring it
+    auto reference_for = [&](const SweepConfig& c) -> const NaiveReference& {
+      const std::string ip = c.integrator_params.dump();
+      if (const auto it = references.find(ip); it != references.end()) return it->second;
+      NaiveReference& r = references[ip];
+      const std::string naive_key = config_key(spec.name, "naive", json::object(), c.integrator_params);
+      if (const auto it = done.find(naive_key); it != done.end() && measured_on(it->second) == node)
+        r.reference = reference_from_row(it->second);
+      if (r.reference) return r;
+      if (options.progress)
+        std::fprintf(stderr, "sweep: %s: measuring naive, the reference%s\n", spec.name.c_str(),
+                     c.integrator_params.empty() ? "" : (" for " + c.integrator_params.dump()).c_str());
+      // The sweep's own naive row for this setting, if it is pending: this measurement is its
+      // row (with the inspector's findings when naive is timed at the timed resolution).
+      std::optional<std::size_t> row_index;
+      for (std::size_t i = begin; i < end; ++i)
+        if (pending[i].key == naive_key && !emitted.count(i)) row_index = i;
+      MeasureOptions nmo = naive_mo;
+      nmo.integrator_params = c.integrator_params;
+      nmo.inspect = row_index && !definition.validates_apart() ? mo.inspect : nullptr;
+      const Measurement naive = measure(*scene, boxes, "naive", json::object(), nmo, std::nullopt);
       summary.build_s += naive.spent_build_s;
       summary.trace_s += naive.spent_trace_s;
-      if (naive.status == RowStatus::Ok) reference = Reference{naive.image_hash, naive.render_ms->median, naive.rays};
-      else no_reference = "no naive reference on this scene: " + naive.reason;
-      for (std::size_t i = begin; i < end; ++i)
-        if (pending[i].key == naive_key) {
-          emit(make_row(pending[i], spec, primitives, naive_mo, naive, reference), pending[i], describe(naive));
-          pending.erase(pending.begin() + std::ptrdiff_t(i));
-          --end;
-          break;
-        }
-    }
+      if (naive.status == RowStatus::Ok) r.reference = Reference{naive.image_hash, naive.render_ms->median, naive.rays};
+      else r.why_not = "no naive reference on this scene: " + naive.reason;
+      if (row_index) {
+        emit(make_row(pending[*row_index], spec, primitives, nmo, naive, r.reference), pending[*row_index],
+             describe(naive));
+        emitted.insert(*row_index);
+      }
+      return r;
+    };
     for (std::size_t i = begin; i < end && !stop_requested(); ++i) {
+      if (emitted.count(i)) continue;
       const SweepConfig& c = pending[i];
-      if (!reference) {
-        emit(make_failed_row(c, spec, mo, no_reference), c, "failed: " + no_reference);
+      const NaiveReference& ref = reference_for(c);
+      if (emitted.count(i)) continue;  // c was naive itself, written just now
+      if (stop_requested()) break;
+      MeasureOptions cmo = mo;
+      cmo.integrator_params = c.integrator_params;
+      if (!ref.reference) {
+        emit(make_failed_row(c, spec, cmo, ref.why_not), c, "failed: " + ref.why_not);
         continue;
       }
-      const Measurement m = measure(*scene, boxes, c.structure, c.params, mo, reference);
+      const Measurement m = measure(*scene, boxes, c.structure, c.params, cmo, ref.reference);
       summary.build_s += m.spent_build_s;
       summary.trace_s += m.spent_trace_s;
       std::string what = describe(m);
       if (m.status == RowStatus::Ok && m.render_ms && !definition.validates_apart()) {
         char buf[48];
-        std::snprintf(buf, sizeof buf, ", %.2fx naive", reference->render_ms / m.render_ms->median);
+        std::snprintf(buf, sizeof buf, ", %.2fx naive", ref.reference->render_ms / m.render_ms->median);
         what += buf;
       }
-      emit(make_row(c, spec, primitives, mo, m, reference), c, what);
+      emit(make_row(c, spec, primitives, cmo, m, ref.reference), c, what);
     }
     begin = end;
   }

@@ -4,6 +4,7 @@
 #include "bench/sweep_definition.h"
 #include "bench/sweep_jsonl.h"
 #include "bench/sweep_machine.h"
+#include "bench/sweep_runner.h"
 #include "bench/sweep_stats.h"
 
 #include <gtest/gtest.h>
@@ -126,6 +127,45 @@ TEST(SweepDefinition, KeyIsCanonical) {
             bench::config_key("s", "kdtree", json{{"max_depth", 8}, {"max_leaf_size", 2}}));
   EXPECT_NE(bench::config_key("s", "kdtree", json{{"max_depth", 8}}),
             bench::config_key("s", "octree", json{{"max_depth", 8}}));
+}
+
+TEST(SweepDefinition, IntegratorKnobGroupsAreCrossedWithinAndJoinedAcross) {
+  // One group: its knobs crossed. Several: joined (one knob at a time), repeats dropped.
+  json j = {{"scenes", {"five"}},
+            {"structures", {"naive", {{"name", "kdtree"}, {"max_leaf_size", {1, 2}}}}},
+            {"integrator_knobs", {{"max_depth", {1, 2, 3}}, {"spp", {1, 4}}}}};
+  auto d = bench::parse_sweep_definition(j);
+  ASSERT_EQ(d.integrator_knobs.size(), 1u);
+  EXPECT_EQ(bench::expand(d).size(), (1u + 2u) * 6u);
+  j["integrator_knobs"] = json::array({{{"max_depth", {1, 2, 3}}}, {{"spp", {1, 4}}}, {{"spp", {4}}}});
+  d = bench::parse_sweep_definition(j);
+  const auto configs = bench::expand(d);
+  EXPECT_EQ(configs.size(), (1u + 2u) * 5u);
+  std::set<std::string> keys;
+  for (const auto& c : configs) {
+    keys.insert(c.key);
+    EXPECT_EQ(c.integrator_params.size(), 1u);
+    EXPECT_EQ(c.key, bench::config_key("five", c.structure, c.params, c.integrator_params));
+  }
+  EXPECT_EQ(keys.size(), configs.size());
+  const json normal = bench::to_json(d);
+  EXPECT_EQ(bench::to_json(bench::parse_sweep_definition(normal)), normal);
+  // Without integrator knobs the keys are what they always were.
+  EXPECT_EQ(bench::config_key("s", "bvh", json::object(), json::object()), "s|bvh|{}");
+  EXPECT_EQ(bench::config_key("s", "bvh", json::object(), {{"spp", 4}}), "s|bvh|{}|{\"spp\":4}");
+
+  for (const auto& [patch, message] : std::vector<std::pair<json, std::string>>{
+           {{{"integrator_knobs", {{"depth", {1}}}}}, "/integrator_knobs/depth: integrator whitted has no knob 'depth'"},
+           {{{"integrator_knobs", {{"max_depth", {1, 5000}}}}}, "/integrator_knobs/max_depth/1: whitted: knob 'max_depth'"},
+           {{{"integrator_knobs", json::array()}}, "/integrator_knobs: must list at least one group"},
+           {{{"integrator_knobs", json::array({json::object()})}}, "/integrator_knobs/0: must name at least one"},
+           {{{"integrator", "spd"}, {"integrator_knobs", {{"spp", {1}}}}}, "/integrator_knobs/spp: integrator spd has no knob"},
+       }) {
+    json bad = minimal();
+    bad.merge_patch(patch);
+    const std::string got = parse_error(bad);
+    EXPECT_EQ(got.rfind(message, 0), 0u) << got;
+  }
 }
 
 TEST(SweepDefinition, ShardsAreDisjointAndCoverTheSweep) {
@@ -425,6 +465,40 @@ TEST(SweepResume, OnAnotherNodeMeasuresNaiveAgainAndRecordsBothMachines) {
   EXPECT_EQ(moved["speedup_basis"], bench::kSpeedupBasis);
   EXPECT_EQ(outcome(moved), outcome(same));
   EXPECT_TRUE(valid_against_schema(moved, dir));
+  fs::remove_all(dir);
+}
+
+TEST(SweepIntegratorKnobs, EachSettingIsValidatedAgainstNaiveWithTheSameKnobs) {
+  const fs::path dir = temp_dir("integrator_knobs");
+  const auto d = bench::parse_sweep_definition(
+      {{"name", "ik"},
+       {"scenes", {"five"}},
+       {"structures", {"naive", "bvh"}},
+       {"integrator_knobs", json::array({{{"max_depth", {1, 4}}}, {{"spp", {2}}}})},
+       {"resolution", "16x12"},
+       {"repetitions", 1},
+       {"warmup", 0}});
+  bench::RunOptions o;
+  o.out_path = (dir / "ik.json").string();
+  o.jsonl_path = (dir / "ik.jsonl").string();
+  o.progress = false;
+  const bench::RunSummary summary = bench::run_sweep(d, o);
+  EXPECT_TRUE(summary.complete);
+  const json results = read_json(dir / "ik.json");
+  ASSERT_EQ(results["rows"].size(), 6u);
+  std::map<std::string, std::string> naive_hash;  // integrator params -> naive's image hash
+  for (const auto& r : results["rows"]) {
+    ASSERT_EQ(r["status"], "ok") << r.dump();
+    ASSERT_TRUE(r.contains("integrator_params"));
+    if (r["structure"] == "naive") naive_hash[r["integrator_params"].dump()] = r["image_hash"];
+  }
+  ASSERT_EQ(naive_hash.size(), 3u);
+  EXPECT_NE(naive_hash["{\"max_depth\":1}"], naive_hash["{\"max_depth\":4}"]);  // glass and mirrors
+  for (const auto& r : results["rows"]) {
+    EXPECT_EQ(r["naive_image_hash"], naive_hash.at(r["integrator_params"].dump()));
+    EXPECT_EQ(r["image_hash"], r["naive_image_hash"]);
+  }
+  EXPECT_TRUE(valid_against_schema(results, dir));
   fs::remove_all(dir);
 }
 
