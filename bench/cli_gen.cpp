@@ -4,6 +4,7 @@
 #include "commands.h"
 
 #include "scenes_gen/generators.h"
+#include "input/file_read.h"
 #include "tracer/scene_io.h"
 
 #include <CLI/CLI.hpp>
@@ -19,11 +20,15 @@ namespace bench {
 
 namespace {
 
+/// Largest --count gen writes: a million spheres is about 120 MB of JSON, within the scene-file
+/// limit (input::kMaxSceneFileBytes) with room to spare.
+constexpr int kMaxGenCount = 1'000'000;
+
 struct GenFlags {
   std::string name;
   std::string out;
   std::string resolution;
-  std::uint64_t seed = 1;
+  std::string seed = "1";
   int count = 0;
   int samples_per_pixel = 1;
   bool list = false;
@@ -42,11 +47,20 @@ int run_gen(const GenFlags& f) {
   if (std::filesystem::path(f.out).extension() != ".json")
     throw std::runtime_error("-o: expected a .json file name, got '" + f.out + "'");
   scenes_gen::GenOptions options;
-  options.seed = f.seed;
-  if (f.count_opt->count()) options.count = f.count;
+  options.seed = parse_seed(f.seed, "--seed");
+  if (f.count_opt->count()) {
+    // A scene file larger than the loader's limit could never be read back.
+    if (f.count > kMaxGenCount)
+      throw std::runtime_error("--count: gen writes scenes of at most " + std::to_string(kMaxGenCount) +
+                               " spheres (a larger file would pass the scene-file limit of " +
+                               input::byte_text(input::kMaxSceneFileBytes) + "), got " + std::to_string(f.count));
+    options.count = f.count;
+  }
+  int width = 0, height = 0;
+  if (!f.resolution.empty()) parse_resolution(f.resolution, "--resolution", width, height);
   tracer::Scene scene = scenes_gen::generate(f.name, options);
-  if (!f.resolution.empty())
-    parse_resolution(f.resolution, "--resolution", scene.camera.width, scene.camera.height);
+  if (width) scene.camera.width = width, scene.camera.height = height;
+
   if (f.spp_opt->count()) scene.camera.samples_per_pixel = f.samples_per_pixel;
   tracer::save_scene_file(scene, f.out);
   std::printf("wrote %s: %s\n", f.out.c_str(), describe_scene(scene).c_str());
@@ -63,7 +77,7 @@ void add_gen_command(CLI::App& app, int& exit_code) {
   CLI::App* cmd = app.add_subcommand("gen", "Generate a scene file; generators: " + names);
   cmd->add_option("NAME", flags->name, "Generator name (see --list)");
   cmd->add_option("-o,--output", flags->out, "Scene JSON to write");
-  cmd->add_option("--seed", flags->seed, "Random seed (same seed, same scene)");
+  cmd->add_option("--seed", flags->seed, "Random seed, an integer in [0, 2^64-1] (same seed, same scene)");
   flags->count_opt =
       cmd->add_option("--count", flags->count, "Number of primitives, for generators that take one")
           ->check(CLI::NonNegativeNumber);

@@ -120,6 +120,10 @@ int run_render(const RenderFlags& f) {
   const int width = options.width ? options.width : scene.camera.width;
   const int height = options.height ? options.height : scene.camera.height;
   const int threads = tracer::resolve_threads(f.threads);
+  // The image is allocated before the first pixel: refuse one that cannot fit, naming the flag
+  // (or the scene) that asked for it.
+  check_image_memory(width, height, limits.max_memory_bytes,
+                     options.width ? std::string("--resolution") : f.scene + ": /camera/resolution");
 
   // Built before anything is printed, so that a bad knob is the only line of output.
   const auto boxes = scene.geometry.primitive_bounds();

@@ -7,12 +7,15 @@
 #include "sweep_runner.h"
 #include "integrators.h"
 
+#include "accel/accel.h"
+
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -44,23 +47,50 @@ void override_knob(SweepDefinition& d, const std::string& knob, const std::vecto
   d.knobs[knob] = values;
 }
 
+/// A knob flag's values replace that knob's values everywhere; a knob no swept structure has is
+/// an error naming the flag.
+void override_knob_flag(SweepDefinition& d, const std::string& flag, const std::string& knob,
+                        const std::vector<nlohmann::json>& values) {
+  if (values.empty()) return;
+  bool someone_has_it = false, all_probed = true;
+  std::string swept;
+  for (const auto& s : d.structures) {
+    swept += (swept.empty() ? "" : ", ") + s.name;
+    const auto knobs = structure_knobs(s.name);
+    if (!knobs) all_probed = false;
+    else if (std::find(knobs->begin(), knobs->end(), knob) != knobs->end()) someone_has_it = true;
+  }
+  if (!someone_has_it && all_probed)
+    throw SweepError(flag + ": no swept structure has the knob " + knob + " (swept: " + swept + ")");
+  override_knob(d, knob, values);
+}
+
 SweepDefinition definition_from_flags(const SweepFlags& f) {
   const std::string path = f.config.empty() ? std::string(ACCELBENCH_SOURCE_DIR) + "/sweeps/paper.json" : f.config;
-  SweepDefinition d = load_sweep_file(path);
+  SweepDefinition d = load_sweep_file(path);  // the file alone is valid, or its errors name it
   if (!f.scenes.empty()) {
     d.scenes.clear();
+    std::set<std::string> names;
     for (const auto& item : f.scenes) {
       try {
         d.scenes.push_back(parse_scene_item(item));
       } catch (const SweepError& e) {
         throw SweepError(std::string("--scenes: ") + e.what());
       }
+      if (!names.insert(d.scenes.back().name).second)
+        throw SweepError("--scenes: scene name '" + d.scenes.back().name + "' is given twice");
     }
   }
   if (!f.accel.empty()) {
+    const auto names = accel::accel_names();
     // Keep the file's entries for the listed structures (with their knobs); add the others.
     std::vector<StructureSpec> kept;
     for (const auto& name : f.accel) {
+      if (std::find(names.begin(), names.end(), name) == names.end() && name != "embree") {
+        std::string known;
+        for (const auto& n : names) known += (known.empty() ? "" : ", ") + n;
+        throw SweepError("--accel: unknown structure '" + name + "' (known: " + known + ")");
+      }
       bool found = false;
       for (const auto& s : d.structures)
         if (s.name == name) {
@@ -71,10 +101,10 @@ SweepDefinition definition_from_flags(const SweepFlags& f) {
     }
     d.structures = kept;
   }
-  override_knob(d, "max_depth", to_values(f.max_depth));
-  override_knob(d, "max_leaf_size", to_values(f.leaf_size));
-  override_knob(d, "placement", to_values(f.placement));
-  override_knob(d, "split", to_values(f.split));
+  override_knob_flag(d, "--max-depth", "max_depth", to_values(f.max_depth));
+  override_knob_flag(d, "--leaf-size", "max_leaf_size", to_values(f.leaf_size));
+  override_knob_flag(d, "--placement", "placement", to_values(f.placement));
+  override_knob_flag(d, "--split", "split", to_values(f.split));
   if (f.repetitions >= 0) d.repetitions = f.repetitions;
   if (f.warmup >= 0) d.warmup = f.warmup;
   if (f.threads >= 0) d.threads = f.threads;
@@ -88,7 +118,8 @@ SweepDefinition definition_from_flags(const SweepFlags& f) {
     std::tie(d.validate_width, d.validate_height) =
         parse_resolution(f.validate_resolution, "--validate-resolution");
   // Re-validate the edited definition so flags get the same checks as the file; knobs no swept
-  // structure has are dropped from the sweep-wide set rather than rejected.
+  // structure has are dropped from the sweep-wide set (the file's own, for structures that
+  // --accel removed).
   std::vector<std::string> known;
   for (const auto& s : d.structures)
     if (const auto k = structure_knobs(s.name)) known.insert(known.end(), k->begin(), k->end());
@@ -97,7 +128,8 @@ SweepDefinition definition_from_flags(const SweepFlags& f) {
   try {
     return parse_sweep_definition(to_json(d));
   } catch (const SweepError& e) {
-    throw SweepError(std::string("flags: ") + e.what());
+    // The file alone was valid: what fails now is the file combined with the flags.
+    throw SweepError(path + " with the flags given: " + e.what());
   }
 }
 
@@ -133,6 +165,9 @@ int run(const SweepFlags& f) {
     std::fprintf(stderr, "sweep: continue with the same flags and --resume\n");
     return 130;
   }
+  if (s.rows > 0 && s.ok_rows == 0)
+    throw SweepError("sweep: every configuration failed or is in error (" + std::to_string(s.rows) +
+                     (s.rows == 1 ? " row" : " rows") + "; the reasons are in " + o.out_path + ")");
   return 0;
 }
 

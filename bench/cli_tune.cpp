@@ -8,12 +8,15 @@
 #include "sweep_scene.h"
 #include "tune.h"
 
+#include "accel/accel.h"
+
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
 #include <cstdio>
 #include <memory>
 #include <string>
+#include <tuple>
 
 namespace bench {
 namespace {
@@ -21,7 +24,7 @@ namespace {
 struct TuneFlags {
   std::string scene, accel = "kdtree", resolution = "320x240", placement, split, json_out, max_memory = "0";
   int threads = 1, repetitions = 3, warmup = 1;
-  std::uint64_t seed = 1;
+  std::string seed = "1";
 };
 
 /// "max_depth=9 max_leaf_size=6": the tuned knobs of a point.
@@ -34,24 +37,57 @@ std::string range_text(int lo, int hi) {
   return lo == hi ? std::to_string(lo) : std::to_string(lo) + "-" + std::to_string(hi);
 }
 
-int run(const TuneFlags& f) {
-  SceneSpec spec;
+/// Every flag checked before anything is measured: a bad one is the only line of output.
+TuneOptions options_from_flags(const TuneFlags& f, SceneSpec& spec) {
   try {
     spec = parse_scene_item(f.scene);
   } catch (const SweepError& e) {
     throw SweepError(std::string("SCENE: ") + e.what());
   }
-  spec.seed = f.seed;
-  const tracer::Scene scene = load_sweep_scene(spec);
-
+  spec.seed = parse_seed(f.seed, "--seed");
   TuneOptions o;
   std::tie(o.measure.width, o.measure.height) = parse_resolution(f.resolution, "--resolution");
   o.measure.threads = f.threads;
   o.measure.repetitions = f.repetitions;
   o.measure.warmup = f.warmup;
   o.measure.limits.max_memory_bytes = parse_bytes(f.max_memory, "--max-memory");
-  if (!f.placement.empty()) o.fixed["placement"] = f.placement;
-  if (!f.split.empty()) o.fixed["split"] = f.split;
+  check_image_memory(o.measure.width, o.measure.height, o.measure.limits.max_memory_bytes, "--resolution");
+  const auto knobs = structure_knobs(f.accel);
+  if (!knobs) {
+    std::string known;
+    for (const std::string& n : accel::accel_names()) known += (known.empty() ? "" : ", ") + n;
+    throw SweepError("--accel: '" + f.accel + "' cannot be built here (known: " + known + ")");
+  }
+  // A held knob is checked by the factory itself, over no primitives.
+  for (const auto& [flag, knob, value] : {std::tuple{"--placement", "placement", &f.placement},
+                                          std::tuple{"--split", "split", &f.split}}) {
+    if (value->empty()) continue;
+    if (std::find(knobs->begin(), knobs->end(), knob) == knobs->end())
+      throw SweepError(std::string(flag) + ": " + f.accel + " has no knob '" + knob + "'");
+    try {
+      accel::make_accel(f.accel, {{knob, *value}}, {});
+    } catch (const std::exception& e) {
+      throw SweepError(std::string(flag) + ": " + e.what());
+    }
+    o.fixed[knob] = *value;
+  }
+  return o;
+}
+
+int run(const TuneFlags& f) {
+  SceneSpec spec;
+  TuneOptions o = options_from_flags(f, spec);
+  const tracer::Scene scene = load_sweep_scene(spec);
+  // The structure at its default knobs must build on this scene within the budget, or every
+  // point of the search would fail: say so once, naming the flag, before naive is measured.
+  try {
+    const auto boxes = scene.geometry.primitive_bounds();
+    accel::make_accel(f.accel, o.fixed, boxes, o.measure.limits);
+  } catch (const std::exception& e) {
+    const std::string why = e.what();
+    throw SweepError((why.find("--max-memory") != std::string::npos ? "--max-memory: " : "tune: ") + f.accel +
+                     " cannot be built on " + spec.name + " at its default knobs: " + why);
+  }
 
   std::printf("tune: %s on %s (%u primitives), %dx%d, %d thread(s), median of %d\n", f.accel.c_str(),
               spec.name.c_str(), scene.geometry.bounded_count(), o.measure.width, o.measure.height, f.threads,
@@ -113,7 +149,7 @@ void add_tune_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--placement", flags->placement, "Hold placement fixed: leaves or every_level");
   cmd->add_option("--split", flags->split, "Hold the kd-tree split rule fixed: midpoint or sah");
   cmd->add_option("--max-memory", flags->max_memory, "Build memory budget, e.g. 512M or 2G (0 = 25% of RAM)");
-  cmd->add_option("--seed", flags->seed, "Generator seed")->capture_default_str();
+  cmd->add_option("--seed", flags->seed, "Generator seed, an integer in [0, 2^64-1]")->capture_default_str();
   cmd->add_option("--json", flags->json_out, "Also write every point as JSON to this file");
   cmd->callback([flags, &exit_code] { exit_code = run(*flags); });
 }

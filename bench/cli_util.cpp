@@ -1,5 +1,9 @@
 #include "cli_util.h"
 
+#include "accel/accel.h"
+#include "input/file_read.h"
+#include "input/message.h"
+
 #include <cctype>
 #include <charconv>
 #include <stdexcept>
@@ -51,6 +55,36 @@ std::uint64_t parse_bytes(const std::string& text, const std::string& flag) {
     throw bad();
   if (shift && value > (~std::uint64_t(0) >> shift)) throw bad();
   return value << shift;
+}
+
+std::uint64_t parse_seed(const std::string& text, const std::string& flag) {
+  std::uint64_t value = 0;
+  const char* end = text.data() + text.size();
+  const auto r = std::from_chars(text.data(), end, value);
+  if (text.empty() || r.ec != std::errc() || r.ptr != end)
+    throw std::runtime_error(flag + ": expected an integer in [0, 18446744073709551615], got '" +
+                             input::one_line(text, 40) + "'");
+  return value;
+}
+
+std::uint64_t image_bytes(int width, int height) {
+  // Linear RGB floats, twice (a counting pass's image beside the timed one), and 8-bit RGB for
+  // the PNG.
+  return std::uint64_t(width) * std::uint64_t(height) * (2 * 3 * sizeof(float) + 3);
+}
+
+void check_image_memory(int width, int height, std::uint64_t budget_bytes, const std::string& flag) {
+  accel::BuildLimits limits;
+  limits.max_memory_bytes = budget_bytes;
+  const std::uint64_t budget = accel::memory_budget_bytes(limits);
+  const std::uint64_t need = image_bytes(width, height);
+  const std::string size = std::to_string(width) + "x" + std::to_string(height);
+  if (need <= budget) return;
+  if (budget_bytes)  // the user's budget is what is too small
+    throw std::runtime_error("--max-memory: " + input::byte_text(budget) + " cannot hold the " + size + " image (" +
+                             input::byte_text(need) + " needed)");
+  throw std::runtime_error(flag + ": a " + size + " image needs " + input::byte_text(need) +
+                           ", over the memory budget of " + input::byte_text(budget) + " (25% of RAM; see --max-memory)");
 }
 
 std::string describe_scene(const tracer::Scene& scene) {

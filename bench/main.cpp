@@ -2,21 +2,20 @@
 
 #include "commands.h"
 
+#include "input/message.h"
+
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
 #include <exception>
 #include <iostream>
+#include <new>
 #include <string>
 
 namespace {
 
-/// The message on one line, whatever the exception put in it.
-std::string one_line(std::string s) {
-  for (char& c : s)
-    if (c == '\n' || c == '\r') c = ' ';
-  return s;
-}
+/// The message on one line of about 200 characters at most, whatever the exception put in it.
+std::string one_line(const std::string& s) { return input::one_line(s); }
 
 }  // namespace
 
@@ -38,6 +37,10 @@ int main(int argc, char** argv) {
     std::fflush(stdout);  // what the command printed before failing comes first
     std::cerr << "accelbench: " << one_line(e.what()) << " (see --help)\n";
     return e.get_exit_code();
+  } catch (const std::bad_alloc&) {
+    std::fflush(stdout);
+    std::cerr << "accelbench: out of memory\n";
+    return 1;
   } catch (const std::exception& e) {
     std::fflush(stdout);
     std::cerr << "accelbench: " << one_line(e.what()) << '\n';

@@ -3,12 +3,16 @@
 #include "integrators.h"
 
 #include "accel/accel.h"
+#include "input/file_read.h"
+#include "input/json_read.h"
+#include "input/message.h"
+#include "scenes_gen/generators.h"
 
 #include <algorithm>
 #include <cctype>
 #include <charconv>
+#include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <limits>
 #include <set>
 #include <sstream>
@@ -19,8 +23,10 @@ namespace {
 using nlohmann::json;
 
 [[noreturn]] void fail(const std::string& pointer, const std::string& message) {
-  throw SweepError((pointer.empty() ? std::string("/") : pointer) + ": " + message);
+  throw SweepError((pointer.empty() ? std::string("/") : input::display_pointer(pointer)) + ": " + message);
 }
+
+using input::brief;
 
 std::string escape_key(const std::string& key) {
   // RFC 6901: '~' -> "~0", '/' -> "~1".
@@ -49,30 +55,39 @@ void require_keys(const json& j, const std::string& pointer, std::initializer_li
 }
 
 std::string get_string(const json& j, const std::string& pointer) {
-  if (!j.is_string()) fail(pointer, "must be a string, got " + j.dump());
+  if (!j.is_string()) fail(pointer, "must be a string, got " + brief(j));
   return j.get<std::string>();
 }
 
 long long get_integer(const json& j, const std::string& pointer, long long lo, long long hi) {
   if (!j.is_number_integer() && !j.is_number_unsigned())
-    fail(pointer, "must be an integer, got " + j.dump());
+    fail(pointer, "must be an integer, got " + brief(j));
   const long long v = j.is_number_unsigned() && j.get<std::uint64_t>() > std::uint64_t(hi)
                           ? hi + 1
                           : j.get<long long>();
   if (v < lo || v > hi)
-    fail(pointer, "must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got " + j.dump());
+    fail(pointer, "must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got " + brief(j));
   return v;
+}
+
+std::uint64_t get_uint64(const json& j, const std::string& pointer) {
+  if (j.is_number_unsigned()) return j.get<std::uint64_t>();
+  if (j.is_number_integer() && j.get<std::int64_t>() >= 0) return std::uint64_t(j.get<std::int64_t>());
+  fail(pointer, "must be an integer in [0, 18446744073709551615], got " + brief(j));
 }
 
 std::vector<json> parse_knob_values(const json& j, const std::string& pointer) {
   std::vector<json> values;
+  std::set<json> seen;
   auto add = [&](const json& v, const std::string& p) {
     if (!v.is_number() && !v.is_string() && !v.is_boolean())
-      fail(p, "knob value must be a number, string or boolean, got " + v.dump());
-    if (std::find(values.begin(), values.end(), v) == values.end()) values.push_back(v);
+      fail(p, "knob value must be a number, string or boolean, got " + brief(v));
+    if (seen.insert(v).second) values.push_back(v);
   };
   if (j.is_array()) {
     if (j.empty()) fail(pointer, "must list at least one value");
+    if (j.size() > kMaxKnobValues)
+      fail(pointer, "must list at most " + std::to_string(kMaxKnobValues) + " values, got " + std::to_string(j.size()));
     for (std::size_t i = 0; i < j.size(); ++i) add(j[i], child(pointer, i));
   } else {
     add(j, pointer);
@@ -93,7 +108,7 @@ SceneSpec parse_scene(const json& j, const std::string& pointer) {
       fail(pointer, e.what());
     }
   }
-  if (!j.is_object()) fail(pointer, "a scene must be a string or an object, got " + j.dump());
+  if (!j.is_object()) fail(pointer, "a scene must be a string or an object, got " + brief(j));
   require_keys(j, pointer, {"name", "generator", "seed", "count", "file"});
   SceneSpec s;
   const bool has_gen = j.contains("generator"), has_file = j.contains("file");
@@ -107,9 +122,8 @@ SceneSpec parse_scene(const json& j, const std::string& pointer) {
   } else {
     s.generator = get_string(j["generator"], child(pointer, "generator"));
     if (s.generator.empty()) fail(child(pointer, "generator"), "must not be empty");
-    if (j.contains("seed"))
-      s.seed = std::uint64_t(get_integer(j["seed"], child(pointer, "seed"), 0, std::numeric_limits<long long>::max()));
-    if (j.contains("count")) s.count = int(get_integer(j["count"], child(pointer, "count"), 0, 100'000'000));
+    if (j.contains("seed")) s.seed = get_uint64(j["seed"], child(pointer, "seed"));
+    if (j.contains("count")) s.count = int(get_integer(j["count"], child(pointer, "count"), 0, scenes_gen::kMaxCount));
   }
   s.name = j.contains("name") ? get_string(j["name"], child(pointer, "name")) : default_scene_name(s);
   if (s.name.empty()) fail(child(pointer, "name"), "must not be empty");
@@ -126,14 +140,14 @@ StructureSpec parse_structure(const json& j, const std::string& pointer) {
     for (const auto& [key, value] : j.items())
       if (key != "name") s.knobs[key] = parse_knob_values(value, child(pointer, key));
   } else {
-    fail(pointer, "a structure must be a name or an object, got " + j.dump());
+    fail(pointer, "a structure must be a name or an object, got " + brief(j));
   }
   if (s.name.empty()) fail(pointer, "structure name must not be empty");
   return s;
 }
 
 KnobValues parse_knobs(const json& j, const std::string& pointer) {
-  if (!j.is_object()) fail(pointer, "must be an object of knob -> value(s), got " + j.dump());
+  if (!j.is_object()) fail(pointer, "must be an object of knob -> value(s), got " + brief(j));
   KnobValues knobs;
   for (const auto& [key, value] : j.items()) knobs[key] = parse_knob_values(value, child(pointer, key));
   return knobs;
@@ -250,7 +264,7 @@ SweepDefinition parse_sweep_definition(const json& j) {
     const bool safe = !d.name.empty() && std::all_of(d.name.begin(), d.name.end(), [](char c) {
       return std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' || c == '.';
     });
-    if (!safe) fail("/name", "must be a non-empty file-name-safe word ([A-Za-z0-9._-]), got " + j["name"].dump());
+    if (!safe) fail("/name", "must be a non-empty file-name-safe word ([A-Za-z0-9._-]), got " + brief(j["name"]));
   }
   if (j.contains("description")) d.description = get_string(j["description"], "/description");
 
@@ -274,7 +288,7 @@ SweepDefinition parse_sweep_definition(const json& j) {
     if (r.is_string()) {
       std::tie(d.width, d.height) = parse_resolution(r.get<std::string>(), "/resolution");
     } else if (!(r.is_number_integer() && r.get<long long>() == 0)) {
-      fail("/resolution", "must be \"WIDTHxHEIGHT\" or 0 for each scene's own, got " + r.dump());
+      fail("/resolution", "must be \"WIDTHxHEIGHT\" or 0 for each scene's own, got " + brief(r));
     }
   }
   // "mode" is the key's older name, kept so that earlier sweep and results files still parse.
@@ -284,12 +298,12 @@ SweepDefinition parse_sweep_definition(const json& j) {
     const std::string where = std::string("/") + key;
     d.integrator = get_string(j[key], where);
     if (!find_integrator(d.integrator))
-      fail(where, "unknown integrator " + j[key].dump() + " (known: " + integrator_names() + ")");
+      fail(where, "unknown integrator " + brief(j[key]) + " (known: " + integrator_names() + ")");
   }
   if (j.contains("integrator_knobs"))
     d.integrator_knobs = parse_integrator_knobs(j["integrator_knobs"], "/integrator_knobs", d.integrator);
   if (j.contains("fronts")) {
-    if (!j["fronts"].is_object()) fail("/fronts", "must be an object, got " + j["fronts"].dump());
+    if (!j["fronts"].is_object()) fail("/fronts", "must be an object, got " + brief(j["fronts"]));
     d.fronts = j["fronts"];
   }
   if (j.contains("validate_resolution")) {
@@ -298,7 +312,7 @@ SweepDefinition parse_sweep_definition(const json& j) {
       std::tie(d.validate_width, d.validate_height) =
           parse_resolution(r.get<std::string>(), "/validate_resolution");
     } else if (!(r.is_number_integer() && r.get<long long>() == 0)) {
-      fail("/validate_resolution", "must be \"WIDTHxHEIGHT\" or 0 for the timed resolution, got " + r.dump());
+      fail("/validate_resolution", "must be \"WIDTHxHEIGHT\" or 0 for the timed resolution, got " + brief(r));
     }
     // Validating at the timed resolution is the ordinary sweep: normalise it away.
     if (d.validate_width == d.width && d.validate_height == d.height) d.validate_width = d.validate_height = 0;
@@ -337,23 +351,59 @@ SweepDefinition parse_sweep_definition(const json& j) {
       (void)v;
       if (!all_knobs.count(k)) fail(child("/knobs", k), "no structure in this sweep has the knob '" + k + "'");
     }
+
+  // Refuse a sweep too large to list before anything expands it (a typo such as a
+  // million-value axis crossed with another).
+  double configs = 0.0;
+  for (const auto& s : d.structures) {
+    const auto has = structure_knobs(s.name);
+    double n = 1.0;
+    for (const auto& [k, values] : s.knobs) n *= double(values.size());
+    if (has)
+      for (const auto& [k, values] : d.knobs)
+        if (!s.knobs.count(k) && std::find(has->begin(), has->end(), k) != has->end()) n *= double(values.size());
+    configs += n;
+  }
+  double settings = 0.0;  // integrator settings: each group crossed, the groups joined
+  for (const auto& g : d.integrator_knobs) {
+    double n = 1.0;
+    for (const auto& [k, values] : g) n *= double(values.size());
+    settings += n;
+  }
+  configs *= double(d.scenes.size()) * std::max(settings, 1.0);
+  if (configs > double(kMaxConfigurations)) {
+    char text[64];
+    std::snprintf(text, sizeof text, "%.3g", configs);
+    fail("", std::string("the sweep expands to ") + text + " configurations, more than the limit of " +
+                 std::to_string(kMaxConfigurations) + " (fewer knob values or scenes)");
+  }
   return d;
 }
 
-SweepDefinition load_sweep_file(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw SweepError(path + ": cannot open sweep file");
+SweepDefinition parse_sweep_text(std::string_view text, const std::string& name) {
   json j;
   try {
-    j = json::parse(in);
-  } catch (const json::parse_error& e) {
-    throw SweepError(path + ": not valid JSON (byte " + std::to_string(e.byte) + ")");
+    j = input::parse_json(text);
+  } catch (const input::InputError& e) {
+    throw SweepError(name + ": " + e.what());
   }
   try {
     return parse_sweep_definition(j);
   } catch (const SweepError& e) {
-    throw SweepError(path + ": " + e.what());
+    throw SweepError(name + ": " + e.what());
   }
+}
+
+std::string read_input_file(const std::string& path, std::uint64_t max_bytes, std::string_view what) {
+  try {
+    return input::read_file(path, max_bytes, what);
+  } catch (const input::InputError& e) {
+    throw SweepError(e.what());
+  }
+}
+
+SweepDefinition load_sweep_file(const std::string& path) {
+  return parse_sweep_text(read_input_file(path, input::kMaxSweepFileBytes, "sweep file"), path);
 }
 
 json to_json(const SceneSpec& s) {
@@ -402,8 +452,10 @@ json to_json(const SweepDefinition& d) {
 std::string config_key(const std::string& scene, const std::string& structure, const json& params,
                        const json& integrator_params) {
   // nlohmann::json objects keep keys sorted, so dump() is canonical.
-  std::string key = scene + "|" + structure + "|" + (params.is_null() ? json::object() : params).dump();
-  if (!integrator_params.is_null() && !integrator_params.empty()) key += "|" + integrator_params.dump();
+  // Invalid UTF-8 in a knob string (from a flag) is replaced, never thrown.
+  const auto dump = [](const json& j) { return j.dump(-1, ' ', false, json::error_handler_t::replace); };
+  std::string key = scene + "|" + structure + "|" + dump(params.is_null() ? json::object() : params);
+  if (!integrator_params.is_null() && !integrator_params.empty()) key += "|" + dump(integrator_params);
   return key;
 }
 
@@ -445,10 +497,10 @@ std::vector<SweepConfig> expand(const SweepDefinition& d) {
     if (!probed.count(s.name)) probed[s.name] = structure_knobs(s.name);
   // The integrator settings: every group crossed, joined in group order, repeats dropped.
   std::vector<json> integrator_settings;
+  std::set<json> seen_settings;
   for (const auto& g : d.integrator_knobs)
     for (json& ip : cross(g))
-      if (std::find(integrator_settings.begin(), integrator_settings.end(), ip) == integrator_settings.end())
-        integrator_settings.push_back(std::move(ip));
+      if (seen_settings.insert(ip).second) integrator_settings.push_back(std::move(ip));
   if (integrator_settings.empty()) integrator_settings.push_back(json::object());
 
   for (std::size_t si = 0; si < d.scenes.size(); ++si) {

@@ -10,6 +10,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -19,6 +20,10 @@ namespace bench {
 struct SweepError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
+
+/// The text of `path` read by input::read_file (a regular file of at most `max_bytes`; `what`
+/// names the kind of file), its errors as SweepError.
+std::string read_input_file(const std::string& path, std::uint64_t max_bytes, std::string_view what);
 
 /// Where a scene comes from.
 enum class SceneSource { Generator, File };
@@ -84,11 +89,21 @@ struct SweepConfig {
   std::string key;              ///< Canonical key: equal keys are the same configuration.
 };
 
+/// Most values one knob axis may list in a sweep definition.
+inline constexpr std::size_t kMaxKnobValues = 10'000;
+/// Most configurations a sweep definition may expand to (the paper sweep has 230).
+inline constexpr std::size_t kMaxConfigurations = 100'000;
+
 /// Parses and validates a sweep definition; errors name the JSON pointer, e.g.
 /// "/structures/2/max_depth/1: must be an integer, got \"8\"".
 SweepDefinition parse_sweep_definition(const nlohmann::json& j);
 
-/// Reads and parses a sweep file; errors start with the path.
+/// Parses the text of a sweep file (input::parse_json: nesting limit, no duplicate keys);
+/// errors start with `name`.
+SweepDefinition parse_sweep_text(std::string_view text, const std::string& name);
+
+/// Reads (a regular file within input::kMaxSweepFileBytes) and parses a sweep file; errors
+/// start with the path.
 SweepDefinition load_sweep_file(const std::string& path);
 
 /// The normalised JSON form (parse_sweep_definition(to_json(d)) == d).

@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace bench {
@@ -32,12 +33,20 @@ class JsonlWriter {
 
 /// What a JSON Lines file holds.
 struct JsonlContents {
-  std::vector<nlohmann::json> records;  ///< Every complete line that parses as an object, in order.
+  std::vector<nlohmann::json> records;  ///< Every complete line, each a JSON object, in order.
+  std::vector<std::size_t> lines;       ///< The line number (1-based) of each record.
   std::uint64_t valid_bytes = 0;        ///< Length of the prefix that ends with the last complete line.
-  std::size_t skipped_lines = 0;        ///< Lines that did not parse (a torn last line after a kill).
+  bool torn_tail = false;               ///< Text after the last newline (a write cut by a kill) was dropped.
 };
 
-/// Reads `path`; a missing file reads as empty. Throws SweepError when it cannot be read.
+/// Parses JSON Lines text strictly: every complete line (one that ends in a newline) must be a
+/// JSON object (input::parse_json: nesting limit, no duplicate keys); blank lines are skipped.
+/// Only text after the last newline, a line torn by a kill mid-write, is dropped. Throws
+/// SweepError "<name>:<line>: <what is wrong>".
+JsonlContents parse_jsonl(std::string_view text, const std::string& name);
+
+/// Reads `path` (a regular file within input::kMaxResultsFileBytes) and parses it; a missing
+/// file reads as empty. Throws SweepError naming the path.
 JsonlContents read_jsonl(const std::string& path);
 
 /// Cuts `path` to `bytes` (drops a torn last line before appending after it).

@@ -6,7 +6,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include <map>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -35,7 +37,23 @@ nlohmann::json assemble_results(const std::vector<nlohmann::json>& records, cons
 /// file. Throws SweepError.
 void write_json_atomic(const std::string& path, const nlohmann::json& doc);
 
-/// Reads a results file and checks its format. Throws SweepError naming the path.
+/// The configurations of a sweep by key.
+std::map<std::string, const SweepConfig*> configs_by_key(const std::vector<SweepConfig>& configs);
+
+/// Checks that `row` is a row of one of `configs`: "key" a string naming a configuration, "index"
+/// that configuration's index, "scene", "structure" and "requested" matching it, "status" one of
+/// ok, failed, error, and an ok row's render_ms median a number >= 0. Returns the configuration.
+/// Throws SweepError "<where>/<field>: <what is wrong>".
+const SweepConfig& check_row(const nlohmann::json& row, const std::map<std::string, const SweepConfig*>& configs,
+                             const SweepDefinition& definition, const std::string& where);
+
+/// Parses the text of a results file strictly (input::parse_json) and checks it: format and
+/// version, "machine", "sweep" (a valid definition), "shard" (0 <= index < count), and every row
+/// (check_row, in its shard, no configuration twice). Throws SweepError "<name>: <pointer>: ...".
+nlohmann::json parse_results_text(std::string_view text, const std::string& name);
+
+/// Reads (a regular file within input::kMaxResultsFileBytes) and checks a results file. Throws
+/// SweepError naming the path.
 nlohmann::json read_results_file(const std::string& path);
 
 /// Joins shards (path, document): same sweep definition, no configuration twice (SweepError

@@ -1,5 +1,6 @@
 #include "sweep_row.h"
 
+#include "input/message.h"
 #include "tracer/image.h"
 
 namespace bench {
@@ -33,7 +34,7 @@ nlohmann::json make_row(const SweepConfig& config, const SceneSpec& scene, std::
   add_integrator_params(row, config);
   row["primitives"] = primitives;
   row["status"] = status_name(m.status);
-  if (m.status != RowStatus::Ok) row["reason"] = m.reason;
+  if (m.status != RowStatus::Ok) row["reason"] = input::one_line(m.reason);
   if (m.built) {
     row["built"] = m.built_name;
     row["params"] = m.params;
@@ -84,7 +85,7 @@ nlohmann::json make_failed_row(const SweepConfig& config, const SceneSpec& scene
   nlohmann::json row = row_head(config, scene, options);
   add_integrator_params(row, config);
   row["status"] = status_name(RowStatus::Failed);
-  row["reason"] = reason;
+  row["reason"] = input::one_line(reason);
   return row;
 }
 

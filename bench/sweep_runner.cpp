@@ -5,9 +5,11 @@
 #include "sweep_machine.h"
 #include "sweep_measure.h"
 #include "sweep_results.h"
+#include "sweep_resume.h"
 #include "sweep_row.h"
 #include "sweep_scene.h"
 
+#include <charconv>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
@@ -32,12 +34,20 @@ std::string clock_text(double seconds) {
 
 /// Naive's figures recorded in an earlier row (resume), when that row is usable as a reference.
 std::optional<Reference> reference_from_row(const json& row) {
-  if (row.value("status", "") != "ok" || !row.contains("render_ms") || !row.contains("image_hash"))
+  if (row.value("status", "") != "ok" || !row.contains("render_ms") || !row.contains("image_hash") ||
+      !row["image_hash"].is_string() || !row["render_ms"].is_object() || !row["render_ms"].contains("median") ||
+      !row["render_ms"]["median"].is_number())
     return std::nullopt;
   Reference r;
-  r.image_hash = std::stoull(row["image_hash"].get<std::string>(), nullptr, 16);
+  const std::string& hash = row["image_hash"].get_ref<const std::string&>();
+  const auto [end, ec] = std::from_chars(hash.data(), hash.data() + hash.size(), r.image_hash, 16);
+  if (hash.size() != 16 || ec != std::errc() || end != hash.data() + hash.size()) return std::nullopt;
   r.render_ms = row["render_ms"]["median"].get<double>();
-  if (row.contains("rays")) r.rays = row["rays"].get<tracer::RayCounts>();
+  try {
+    if (row.contains("rays")) r.rays = row["rays"].get<tracer::RayCounts>();
+  } catch (const std::exception&) {
+    return std::nullopt;  // unreadable counts: measure naive again
+  }
   return r;
 }
 
@@ -52,26 +62,6 @@ int kill_signal() {
   return v && std::string(v) == "TERM" ? SIGTERM : SIGKILL;
 }
 
-/// Reads the JSON Lines file of an earlier run for --resume, checking it belongs to this sweep.
-std::vector<json> resume_records(const std::string& path, const json& definition, const json& shard_json) {
-  JsonlContents contents = read_jsonl(path);
-  if (contents.records.empty()) return {};
-  const json& header = contents.records.front();
-  if (header.value("kind", "") != kHeaderKind)
-    throw SweepError(path + ": first line is not a sweep header; cannot --resume from it");
-  if (header.value("sweep", json()) != definition)
-    throw SweepError(path + ": written by a different sweep definition; cannot --resume it (pick another --jsonl)");
-  if (header.value("shard", json()) != shard_json)
-    throw SweepError(path + ": written for shard " + header.value("shard", json()).dump() +
-                     ", not " + shard_json.dump() + "; cannot --resume it");
-  if (contents.skipped_lines) {
-    std::fprintf(stderr, "sweep: %s: dropping %zu torn or unreadable line(s)\n", path.c_str(),
-                 contents.skipped_lines);
-    truncate_file(path, contents.valid_bytes);
-  }
-  return std::move(contents.records);
-}
-
 }  // namespace
 
 RunSummary run_sweep(const SweepDefinition& definition, const RunOptions& options) {
@@ -82,10 +72,17 @@ RunSummary run_sweep(const SweepDefinition& definition, const RunOptions& option
   const json definition_json = to_json(definition);
   const json shard_json = {{"index", options.shard_index}, {"count", options.shard_count}};
 
-  // Records of earlier runs (--resume): their rows are done.
-  std::vector<json> records;
-  if (options.resume) records = resume_records(options.jsonl_path, definition_json, shard_json);
-  const bool fresh = records.empty();
+  // Records of earlier runs (--resume), every one checked against this sweep and shard: their
+  // rows are done.
+  ResumeState state;
+  if (options.resume) {
+    state = check_resume(read_jsonl(options.jsonl_path), options.jsonl_path, definition, shard_json, mine);
+    if (state.torn_tail) {
+      std::fprintf(stderr, "sweep: %s: dropping a torn last line (a write cut by a kill)\n", options.jsonl_path.c_str());
+      truncate_file(options.jsonl_path, state.valid_bytes);
+    }
+  }
+  const bool fresh = state.records.empty();
   JsonlWriter writer(options.jsonl_path, fresh);
   const json here = machine_info();
   const std::string node = node_name(here);
@@ -96,12 +93,10 @@ RunSummary run_sweep(const SweepDefinition& definition, const RunOptions& option
                    {"sweep", definition_json}, {"shard", shard_json}, {"machine", machine}};
     writer.append(header);
   } else {
-    machine = records.front()["machine"];
+    machine = state.machine;
     writer.append({{"kind", kResumeKind}, {"machine", here}});
   }
-  std::map<std::string, json> done;
-  for (const auto& r : records)
-    if (r.value("kind", "") == kRowKind) done.emplace(r.value("key", ""), r);
+  const std::map<std::string, json>& done = state.done;
   // The node that measured a row: its own record, else (rows of older files) the header's.
   auto measured_on = [&](const json& row) {
     return row.contains("node") && row["node"].is_string() ? row["node"].get<std::string>()
@@ -274,6 +269,8 @@ RunSummary run_sweep(const SweepDefinition& definition, const RunOptions& option
   summary.complete = results["complete"].get<bool>();
   if (results.contains("mixed_hardware"))
     summary.hardware_warning = results["mixed_hardware"]["warning"];
+  summary.rows = results["rows"].size();
+  for (const auto& row : results["rows"]) summary.ok_rows += row.value("status", "") == "ok";
   write_json_atomic(options.out_path, results);
   return summary;
 }

@@ -25,6 +25,8 @@ struct RunSummary {
   std::size_t already_done = 0;    ///< Skipped because the JSON Lines file had them (--resume).
   std::size_t measured = 0;        ///< Rows written by this run.
   std::size_t not_ok = 0;          ///< Of those, rows with status failed or error.
+  std::size_t rows = 0;            ///< Rows in the results file (earlier runs' included).
+  std::size_t ok_rows = 0;         ///< Of those, rows with status ok.
   double wall_s = 0.0;             ///< Wall time of the run, s.
   double build_s = 0.0;            ///< Time inside structure builds, s.
   double trace_s = 0.0;            ///< Time inside render calls (timed, warm-up, counting), s.

@@ -44,8 +44,9 @@ tracer::Scene generate(std::string_view name, const GenOptions& options) {
   }
   if (options.count && !e->takes_count)
     throw GenError(std::string(name) + ": takes no count (it has a fixed size)");
-  if (options.count && *options.count < 0)
-    throw GenError(std::string(name) + ": count must be >= 0, got " + std::to_string(*options.count));
+  if (options.count && (*options.count < 0 || *options.count > kMaxCount))
+    throw GenError(std::string(name) + ": count must be in [0, " + std::to_string(kMaxCount) + "], got " +
+                   std::to_string(*options.count));
   tracer::Scene scene = e->make(options);
   scene.geometry.finalize();
   return scene;

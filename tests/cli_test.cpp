@@ -1,5 +1,7 @@
 // The accelbench command line, run as a user runs it: sizes, determinism, and one-line errors.
 
+#include "cli_run.h"
+
 #include "tracer/image.h"
 
 #include <gtest/gtest.h>
@@ -17,22 +19,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct CliRun {
-  int status = -1;     ///< Exit status.
-  std::string output;  ///< stdout and stderr together.
-};
+using cli_run::CliRun;
 
-CliRun accelbench(const std::string& args) {
-  const std::string cmd = std::string(ACCELBENCH_CLI) + " " + args + " 2>&1";
-  CliRun run;
-  FILE* pipe = popen(cmd.c_str(), "r");
-  if (!pipe) return run;
-  std::array<char, 4096> buf;
-  while (std::fgets(buf.data(), int(buf.size()), pipe)) run.output += buf.data();
-  const int raw = pclose(pipe);
-  run.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  return run;
-}
+CliRun accelbench(const std::string& args) { return cli_run::run(std::string(ACCELBENCH_CLI) + " " + args); }
 
 class Cli : public ::testing::Test {
  protected:
@@ -103,7 +92,7 @@ TEST_F(Cli, BadFlagsGiveOneLineAndExitNonZero) {
       {"render " + scene + " -o out.jpg",
        "accelbench: -o: expected a .png file name, got 'out.jpg'\n"},
       {"render " + path("missing.json"),
-       "accelbench: " + path("missing.json") + ": cannot open file\n"},
+       "accelbench: " + path("missing.json") + ": cannot open: No such file or directory\n"},
       {"gen nosuch -o " + path("x.json"),
        "accelbench: unknown generator 'nosuch' (known: refraction, spheres8000, five, random"},
       {"gen five --count 3 -o " + path("x.json"),

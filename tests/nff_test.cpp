@@ -141,7 +141,15 @@ TEST(Nff, BrokenFilesGiveExactErrors) {
       {kView + "l 1 2 3 4 5\n", "t.nff:8: expected 3 or 6 numbers after 'l', got 5"},
       {kView + "l 1 2\n", "t.nff:8: expected 3 numbers after 'l', got 2"},
       {kView + "s 0 0 0 nan\n", "t.nff:8: number 'nan' is not finite"},
-      {kView + "s 0 0 0\n1e39\n", "t.nff:9: number '1e39' is not finite"},
+      {kView + "s 0 0 0\n1e39\n", "t.nff:9: number '1e39' is beyond float range (magnitude at most 3.4e38)"},
+      {kView + "s 1e999 0 0 0.5\n", "t.nff:8: number '1e999' is beyond float range (magnitude at most 3.4e38)"},
+      {kView + "s 0 0 0 inf\n", "t.nff:8: number 'inf' is not finite"},
+      {kView + "p 1e999\n", "t.nff:8: 'p' needs 3 to 1000000 vertices, got '1e999'"},
+      {kView + "p 4\n0 0 0\n1 0 0\n2 0 0\n3 0 0\n",
+       "t.nff:8: 'p' polygon is degenerate: its vertices do not span a plane"},
+      {kView + "b 0 -0.5 0\n", "t.nff:8: 'b' colour values must be >= 0, got -0.500000"},
+      {kView + "l 1 2 3 1 -1 1\n", "t.nff:8: 'l' colour values must be >= 0, got -1.000000"},
+      {kView + "l 3e38 0 0\n", "t.nff:8: 'l' light is too far from the look-at point (its power overflows float)"},
       {kView + "s 0 0 0 0\n", "t.nff:8: 's' radius must be non-zero"},
       {kView + "pp 3\n0 0 0 0 0 0\n1 0 0 0 0 1\n0 1 0 0 0 1\n",
        "t.nff:8: 'pp' vertex 1 has a zero normal"},
@@ -247,7 +255,7 @@ TEST(Nff, MissingFileIsOneLine) {
     load_nff("/nonexistent/dir/x.nff");
     FAIL() << "no error";
   } catch (const SceneError& e) {
-    EXPECT_STREQ(e.what(), "x.nff: cannot open '/nonexistent/dir/x.nff'");
+    EXPECT_STREQ(e.what(), "/nonexistent/dir/x.nff: cannot open: No such file or directory");
   }
 }
 

@@ -50,7 +50,7 @@ TEST(SweepDefinition, ErrorsNameTheJsonPointer) {
       {{{"warmup", "1"}}, "/warmup: must be an integer, got \"1\""},
       {{{"scenes", json::array()}}, "/scenes: must be a non-empty array"},
       {{{"scenes", {"five", 3}}}, "/scenes/1: a scene must be a string or an object, got 3"},
-      {{{"scenes", {{{"generator", "random"}, {"count", -5}}}}}, "/scenes/0/count: must be in [0, 100000000], got -5"},
+      {{{"scenes", {{{"generator", "random"}, {"count", -5}}}}}, "/scenes/0/count: must be in [0, 10000000], got -5"},
       {{{"scenes", {{{"generator", "random"}, {"file", "x.nff"}}}}},
        "/scenes/0: a scene needs exactly one of 'generator' or 'file'"},
       {{{"scenes", {"five", "five"}}}, "/scenes/1: scene name 'five' is used twice; give one a 'name'"},
@@ -228,7 +228,8 @@ TEST(SweepJsonl, KeepsCompleteLinesAndDropsATornOne) {
   const auto c = bench::read_jsonl(path);
   ASSERT_EQ(c.records.size(), 2u);
   EXPECT_EQ(c.records[1]["key"], "b");
-  EXPECT_EQ(c.skipped_lines, 1u);
+  EXPECT_TRUE(c.torn_tail);
+  EXPECT_EQ(c.lines, (std::vector<std::size_t>{1, 2}));
   EXPECT_EQ(c.valid_bytes, whole);
   bench::truncate_file(path, c.valid_bytes);
   {
@@ -237,8 +238,16 @@ TEST(SweepJsonl, KeepsCompleteLinesAndDropsATornOne) {
   }
   const auto after = bench::read_jsonl(path);
   EXPECT_EQ(after.records.size(), 3u);
-  EXPECT_EQ(after.skipped_lines, 0u);
+  EXPECT_FALSE(after.torn_tail);
   EXPECT_TRUE(bench::read_jsonl((dir / "absent.jsonl").string()).records.empty());
+  // A damaged line that is not the last is corruption, not a kill: refused with its line number.
+  try {
+    bench::parse_jsonl("{\"kind\":\"row\"}\n{\"kind\":\"ro\n{\"kind\":\"row\"}\n", "x.jsonl");
+    ADD_FAILURE() << "a damaged middle line was accepted";
+  } catch (const SweepError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("x.jsonl:2: /kind: invalid JSON: ", 0), 0u) << e.what();
+  }
+  EXPECT_THROW(bench::parse_jsonl("[1]\n", "x.jsonl"), SweepError);  // not an object
   fs::remove_all(dir);
 }
 
@@ -338,7 +347,7 @@ TEST(SweepResume, AKilledRunResumesToTheSameRowsAsAnUninterruptedOne) {
   EXPECT_FALSE(fs::exists(dir / "killed.json"));
   const auto partial = bench::read_jsonl((dir / "killed.jsonl").string());
   ASSERT_EQ(partial.records.size(), 1u + 3u);  // header + three rows
-  EXPECT_EQ(partial.skipped_lines, 0u);
+  EXPECT_FALSE(partial.torn_tail);
 
   // SIGTERM after two more rows: a clean stop that writes the results so far.
   auto args = tiny_sweep_args(dir, "killed");
@@ -361,6 +370,61 @@ TEST(SweepResume, AKilledRunResumesToTheSameRowsAsAnUninterruptedOne) {
   std::ofstream(dir / "tiny.json") << json{{"name", "tiny"}, {"scenes", {"five"}}, {"structures", {"naive"}}}.dump();
   st = run_cli(args, {});
   EXPECT_TRUE(WIFEXITED(st) && WEXITSTATUS(st) != 0) << st;
+  fs::remove_all(dir);
+}
+
+std::vector<std::string> lines_of(const fs::path& p) {
+  std::ifstream in(p);
+  std::vector<std::string> lines;
+  for (std::string l; std::getline(in, l);) lines.push_back(l);
+  return lines;
+}
+
+void write_lines(const fs::path& p, const std::vector<std::string>& lines) {
+  std::ofstream out(p, std::ios::trunc);
+  for (const auto& l : lines) out << l << '\n';
+}
+
+// Issue 12: a corrupted first row (its key, or no key) once made --resume keep the bogus row,
+// drop the real naive row and still write "complete": true. Now the resume stops at that line
+// and leaves the file alone; once the line is mended or removed, the resume measures exactly
+// what is missing, and every real configuration is in the results.
+TEST(SweepResume, ACorruptedRowStopsTheResumeAndEveryRealConfigurationIsKept) {
+  const fs::path dir = temp_dir("corrupt");
+  write_tiny_definition(dir);
+  int st = run_cli(tiny_sweep_args(dir, "whole"), {});
+  ASSERT_TRUE(WIFEXITED(st) && WEXITSTATUS(st) == 0) << st;
+  const auto expected = outcome(read_json(dir / "whole.json"));
+  const std::vector<std::string> lines = lines_of(dir / "whole.jsonl");
+  ASSERT_GE(lines.size(), 4u);
+
+  for (const std::string damage : {"key", "no key"}) {
+    json first = json::parse(lines[1]);
+    ASSERT_EQ(first["key"], bench::config_key("random-30", "naive", json::object()));
+    if (damage == "key")
+      first["key"] = "random-30|naive|{\"bogus\":1}";
+    else
+      first.erase("key");
+    std::vector<std::string> damaged = {lines[0], first.dump(), lines[2], lines[3]};  // a run cut after 3 rows
+    write_lines(dir / "cut.jsonl", damaged);
+    const auto before = lines_of(dir / "cut.jsonl");
+    auto args = tiny_sweep_args(dir, "cut");
+    args.push_back("--resume");
+    st = run_cli(args, {});
+    EXPECT_TRUE(WIFEXITED(st) && WEXITSTATUS(st) == 1) << damage << ": " << st;
+    EXPECT_EQ(lines_of(dir / "cut.jsonl"), before) << damage << ": the file was changed";
+    EXPECT_FALSE(fs::exists(dir / "cut.json")) << damage << ": results were written";
+
+    // The user removes the bad line: the resume measures the rest, naive included.
+    write_lines(dir / "cut.jsonl", {lines[0], lines[2], lines[3]});
+    st = run_cli(args, {});
+    ASSERT_TRUE(WIFEXITED(st) && WEXITSTATUS(st) == 0) << damage << ": " << st;
+    const json resumed = read_json(dir / "cut.json");
+    EXPECT_TRUE(resumed["complete"].get<bool>()) << damage;
+    EXPECT_TRUE(resumed["missing"].empty()) << damage;
+    EXPECT_EQ(outcome(resumed), expected) << damage;
+    fs::remove(dir / "cut.json");
+  }
   fs::remove_all(dir);
 }
 

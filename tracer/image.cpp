@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <limits>
 #include <stdexcept>
 
 namespace tracer {
@@ -46,6 +47,10 @@ float byte_swapped(float f) {
 void Image::write_png(const std::string& path, float exposure_ev) const {
   if (width_ == 0 || height_ == 0)
     throw std::runtime_error("cannot write an empty image to '" + path + "'");
+  // stb_image_write sizes its buffers in int: refuse images whose filtered rows pass that.
+  if ((std::int64_t(width_) * 3 + 1) * std::int64_t(height_) > std::int64_t(std::numeric_limits<int>::max()))
+    throw std::runtime_error("cannot write '" + path + "': " + std::to_string(width_) + "x" +
+                             std::to_string(height_) + " is too large for a PNG here (write --pfm instead)");
   const float scale = std::exp2(exposure_ev);
   std::vector<std::uint8_t> bytes(pixels_.size() * 3);
   for (std::size_t i = 0; i < pixels_.size(); ++i)

@@ -1,13 +1,15 @@
 #include "nff.h"
 
 #include "nff_shading.h"
+#include "unit_vector.h"
+
+#include "input/file_read.h"
 
 #include <array>
 #include <charconv>
 #include <cmath>
-#include <filesystem>
-#include <fstream>
 #include <iterator>
+#include <limits>
 #include <map>
 #include <numbers>
 #include <optional>
@@ -49,13 +51,23 @@ std::vector<Token> tokenize(std::string_view text) {
   return tokens;
 }
 
-std::optional<double> parse_number(std::string_view s) {
+/// A token read as a number: its value, or why it is not one.
+struct Number {
+  enum class Kind { Ok, NotANumber, OutOfRange } kind = Kind::NotANumber;
+  double value = 0.0;
+};
+
+Number parse_number(std::string_view s) {
   if (s.size() > 1 && s[0] == '+' && s[1] != '-') s.remove_prefix(1);  // from_chars rejects '+'
   double v = 0.0;
   const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
-  if (ec != std::errc() || end != s.data() + s.size()) return std::nullopt;
-  return v;
+  if (end != s.data() + s.size()) return {};
+  if (ec == std::errc::result_out_of_range) return {Number::Kind::OutOfRange, 0.0};
+  if (ec != std::errc()) return {};
+  return {Number::Kind::Ok, v};
 }
+
+constexpr double kFloatMax = double(std::numeric_limits<float>::max());
 
 /// Shortens a token for an error message (garbled files can hold very long or binary words).
 std::string quoted(std::string_view s) {
@@ -100,11 +112,13 @@ class Parser {
     std::vector<double> out;
     out.reserve(std::min<std::size_t>(count, 1024));
     while (out.size() < count && pos_ < tokens_.size()) {
-      const auto v = parse_number(tokens_[pos_].text);
-      if (!v) break;
-      if (!std::isfinite(float(*v)))  // nan, inf, or beyond float's range
-        fail(tokens_[pos_].line, "number " + quoted(tokens_[pos_].text) + " is not finite");
-      out.push_back(*v);
+      const Token& tok = tokens_[pos_];
+      const Number n = parse_number(tok.text);
+      if (n.kind == Number::Kind::NotANumber) break;
+      if (n.kind == Number::Kind::OutOfRange || (std::isfinite(n.value) && std::abs(n.value) > kFloatMax))
+        fail(tok.line, "number " + quoted(tok.text) + " is beyond float range (magnitude at most 3.4e38)");
+      if (!std::isfinite(n.value)) fail(tok.line, "number " + quoted(tok.text) + " is not finite");
+      out.push_back(n.value);
       ++pos_;
     }
     if (out.size() < count)
@@ -124,19 +138,25 @@ class Parser {
   std::uint32_t vertex_count(const Token& cmd, std::uint32_t min) {
     if (pos_ >= tokens_.size()) fail(cmd.line, "expected a vertex count after " + quoted(cmd.text));
     const Token tok = tokens_[pos_++];
-    const auto v = parse_number(tok.text);
-    if (!v || *v != std::floor(*v))
+    const Number n = parse_number(tok.text);
+    // A count past double's range is a count out of range, not a word.
+    const double v = n.kind == Number::Kind::OutOfRange ? HUGE_VAL : n.value;
+    if (n.kind == Number::Kind::NotANumber || v != std::floor(v))
       fail(tok.line, "expected a vertex count after " + quoted(cmd.text) + ", got " + quoted(tok.text));
-    if (*v < min || *v > 1e6)
+    if (v < min || v > 1e6)
       fail(tok.line, quoted(cmd.text) + " needs " + std::to_string(min) +
                          " to 1000000 vertices, got " + quoted(tok.text));
-    return std::uint32_t(*v);
+    return std::uint32_t(v);
   }
 
-  void parse_background(const Token& cmd) {
-    const auto v = numbers(cmd, 3);
-    scene_.background = Color(float(v[0]), float(v[1]), float(v[2]));
+  /// A colour: three numbers, each >= 0 (the scene model's rule for every colour).
+  Color colour(const Token& cmd, const std::vector<double>& v, std::size_t at) const {
+    for (std::size_t i = at; i < at + 3; ++i)
+      if (!(v[i] >= 0.0)) fail(cmd.line, quoted(cmd.text) + " colour values must be >= 0, got " + std::to_string(v[i]));
+    return vec(v, at);
   }
+
+  void parse_background(const Token& cmd) { scene_.background = colour(cmd, numbers(cmd, 3), 0); }
 
   void parse_view(const Token& cmd) {
     if (have_view_) fail(cmd.line, "second 'v' viewpoint");
@@ -186,12 +206,13 @@ class Parser {
     // The colour is optional: take it only when three more numbers follow.
     std::size_t extra = 0;
     while (extra < 3 && pos_ + extra < tokens_.size() &&
-           parse_number(tokens_[pos_ + extra].text).has_value())
+           parse_number(tokens_[pos_ + extra].text).kind != Number::Kind::NotANumber)
       ++extra;
-    if (extra == 3) light.color = vec(numbers(cmd, 3), 0);
+    if (extra == 3) light.color = colour(cmd, numbers(cmd, 3), 0);
     else if (extra > 0)
       fail(cmd.line, "expected 3 or 6 numbers after 'l', got " + std::to_string(3 + extra));
     scene_.lights.push_back(light);
+    light_lines_.push_back(cmd.line);
   }
 
   void parse_material(const Token& cmd) {
@@ -274,8 +295,11 @@ class Parser {
     }
     const auto first = std::uint32_t(g.polygon_vertices.size());
     for (std::uint32_t i = 0; i < n; ++i) g.polygon_vertices.push_back(vec(v, 3 * i));
-    g.polygons.push_back(make_polygon(
-        std::span<const Vec3>(g.polygon_vertices.data() + first, n), first, material()));
+    const Polygon poly = make_polygon(std::span<const Vec3>(g.polygon_vertices.data() + first, n), first, material());
+    // The scene model's rule (the JSON loader's too): a polygon spans a plane.
+    if (poly.normal == Vec3(0.0f))
+      fail(cmd.line, "'p' polygon is degenerate: its vertices do not span a plane");
+    g.polygons.push_back(poly);
   }
 
   void parse_patch(const Token& cmd) {
@@ -286,10 +310,9 @@ class Parser {
     std::vector<Vec3> normals(n);
     for (std::uint32_t i = 0; i < n; ++i) {
       const Vec3 nv = vec(v, 6 * i + 3);
-      const float len = glm::length(nv);
-      if (!(len > 0.0f))
+      normals[i] = unit_vector(nv);
+      if (normals[i] == Vec3(0.0f))
         fail(cmd.line, "'pp' vertex " + std::to_string(i + 1) + " has a zero normal");
-      normals[i] = nv / len;
     }
     // SPD patches are triangles; larger ones become a fan around the first vertex.
     for (std::uint32_t i = 1; i + 1 < n; ++i) {
@@ -311,10 +334,13 @@ class Parser {
   /// (irradiance power / (4 pi d^2) times albedo / pi).
   void finish_lights() {
     const float intensity = spd_light_intensity(scene_.lights.size());
-    for (PointLight& l : scene_.lights) {
+    for (std::size_t i = 0; i < scene_.lights.size(); ++i) {
+      PointLight& l = scene_.lights[i];
       const float d = glm::length(l.position - scene_.camera.look_at);
       constexpr float kPi = std::numbers::pi_v<float>;
       l.power_w = 4.0f * kPi * kPi * std::max(d * d, 1e-6f) * intensity;
+      if (!std::isfinite(l.power_w))
+        fail(light_lines_[i], "'l' light is too far from the look-at point (its power overflows float)");
     }
   }
 
@@ -323,23 +349,36 @@ class Parser {
   std::size_t pos_ = 0;
   Scene scene_;
   bool have_view_ = false;
+  std::vector<int> light_lines_;  ///< The line of each light, for messages.
   std::optional<std::uint32_t> material_;
   std::map<std::array<double, 8>, std::uint32_t> material_ids_;
 };
 
 }  // namespace
 
-Scene load_nff(std::istream& in, const std::string& name_for_errors) {
-  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (in.bad()) throw SceneError(name_for_errors + ": read error");
+Scene parse_nff(std::string_view text, const std::string& name_for_errors) {
   return Parser(text, name_for_errors).parse();
 }
 
+Scene load_nff(std::istream& in, const std::string& name_for_errors) {
+  std::string text;
+  char buf[1 << 16];
+  while (in.read(buf, sizeof buf) || in.gcount() > 0) {
+    if (text.size() + std::size_t(in.gcount()) > input::kMaxSceneFileBytes)
+      throw SceneError(name_for_errors + ": more than " + input::byte_text(input::kMaxSceneFileBytes) +
+                       " (the limit for scene files)");
+    text.append(buf, std::size_t(in.gcount()));
+  }
+  if (in.bad()) throw SceneError(name_for_errors + ": read error");
+  return parse_nff(text, name_for_errors);
+}
+
 Scene load_nff(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  const std::string name = std::filesystem::path(path).filename().string();
-  if (!in) throw SceneError(name + ": cannot open '" + path + "'");
-  return load_nff(in, name);
+  try {
+    return parse_nff(input::read_file(path, input::kMaxSceneFileBytes, "scene file"), path);
+  } catch (const input::InputError& e) {
+    throw SceneError(e.what());
+  }
 }
 
 }  // namespace tracer

@@ -28,15 +28,21 @@
 
 #include <istream>
 #include <string>
+#include <string_view>
 
 namespace tracer {
 
-/// Parses an NFF scene from `in`; `name_for_errors` prefixes every error message (a file name).
-/// Returns a finalized Scene. Throws SceneError, whose what() is one line
+/// Parses NFF text; `name_for_errors` prefixes every error message (a file name). Returns a
+/// finalized Scene that the JSON loader also accepts (the same rules: colours >= 0, polygons
+/// that span a plane, numbers within float range). Throws SceneError, whose what() is one line
 /// "<name>:<line>: <what is wrong>"; never crashes or hangs on truncated or garbled input.
+Scene parse_nff(std::string_view text, const std::string& name_for_errors);
+
+/// parse_nff of everything `in` holds, up to the scene-file size limit.
 Scene load_nff(std::istream& in, const std::string& name_for_errors);
 
-/// Reads the file at `path`; errors are prefixed with the file's name (without directories).
+/// Reads the file at `path` (a regular file within input::kMaxSceneFileBytes, refused before
+/// reading otherwise); errors are prefixed with `path`.
 Scene load_nff(const std::string& path);
 
 }  // namespace tracer

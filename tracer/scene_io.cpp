@@ -3,24 +3,15 @@
 #include "nff.h"
 #include "scene_json.h"
 
+#include "input/file_read.h"
+
+#include <cctype>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 
 namespace tracer {
 
 namespace {
-
-std::string read_file(const std::string& path) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) throw SceneError(path + ": is a directory");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw SceneError(path + ": cannot open file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw SceneError(path + ": read error");
-  return text.str();
-}
 
 std::string lower_extension(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
@@ -28,29 +19,46 @@ std::string lower_extension(const std::string& path) {
   return ext;
 }
 
+/// The file's text, refused before reading when it is not a regular file or is too large.
+std::string read_scene_text(const std::string& path) {
+  try {
+    return input::read_file(path, input::kMaxSceneFileBytes, "scene file");
+  } catch (const input::InputError& e) {
+    throw SceneError(e.what());
+  }
+}
+
 }  // namespace
 
 Scene load_scene_file(const std::string& path) {
   const std::string ext = lower_extension(path);
   if (ext == ".json") {
-    const std::string text = read_file(path);
+    const std::string text = read_scene_text(path);
     try {
       return parse_scene_json(text);
     } catch (const SceneError& e) {
       throw SceneError(path + ": " + e.what());
     }
   }
-  if (ext == ".nff") return load_nff(path);  // errors read "<file>.nff:<line>: ..."
+  if (ext == ".nff") return parse_nff(read_scene_text(path), path);  // errors read "<path>:<line>: ..."
   throw SceneError(path + ": unknown scene format '" + ext + "' (expected .json or .nff)");
 }
 
 void save_scene_file(const Scene& scene, const std::string& path) {
   const std::string ext = lower_extension(path);
   if (ext != ".json") throw SceneError(path + ": scenes are written as .json, not '" + ext + "'");
-  std::ofstream out(path, std::ios::binary);
+  // The text is read back before it is written: a scene the loader would refuse is never saved
+  // (a conversion that loses a rule of the scene model fails here, naming what is wrong).
+  const std::string text = scene_to_json(scene).dump(1) + '\n';
+  try {
+    parse_scene_json(text);
+  } catch (const SceneError& e) {
+    throw SceneError(path + ": not written: the scene would not load back: " + e.what());
+  }
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
   if (!out) throw SceneError(path + ": cannot write file");
-  out << scene_to_json(scene).dump(1) << '\n';
-  if (!out) throw SceneError(path + ": write error");
+  out << text;
+  if (!out.flush()) throw SceneError(path + ": write error");
 }
 
 }  // namespace tracer

@@ -1,7 +1,11 @@
 #include "scene_json.h"
 
+#include "unit_vector.h"
+
+#include "input/json_read.h"
+#include "input/message.h"
+
 #include <algorithm>
-#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <limits>
@@ -19,11 +23,7 @@ namespace {
 // Error messages
 
 /// A JSON value as the user wrote it, shortened to stay on one line.
-std::string show(const json& v) {
-  std::string s = v.dump();
-  if (s.size() > 48) s = s.substr(0, 45) + "...";
-  return s;
-}
+std::string show(const json& v) { return input::brief(v); }
 
 /// A float in its shortest exact decimal form.
 std::string show(float f) {
@@ -32,22 +32,9 @@ std::string show(float f) {
   return std::string(buf, r.ptr);
 }
 
-std::string escape_pointer_token(std::string_view key) {
-  std::string out;
-  for (char c : key) {
-    if (c == '~')
-      out += "~0";
-    else if (c == '/')
-      out += "~1";
-    else
-      out += c;
-  }
-  return out;
-}
+std::string escape_pointer_token(std::string_view key) { return input::pointer_token(key); }
 
-std::string display_path(const std::string& path) {
-  return path.empty() ? "(root)" : path;
-}
+std::string display_path(const std::string& path) { return input::display_pointer(path); }
 
 [[noreturn]] void fail(const std::string& path, const std::string& message) {
   throw SceneError(display_path(path) + ": " + message);
@@ -80,9 +67,11 @@ std::string join(const std::vector<std::string_view>& names) {
 float read_float(const json& v, const std::string& path) {
   if (!v.is_number()) fail(path, "must be a number, got " + show(v));
   const double d = v.get<double>();
-  const float f = static_cast<float>(d);
-  if (!std::isfinite(f)) fail(path, "must be a finite number, got " + show(v));
-  return f;
+  if (!std::isfinite(d)) fail(path, "must be a finite number, got " + show(v));
+  // Rounding to float must not overflow: a finite double past float's range is its own error.
+  if (std::abs(d) > double(std::numeric_limits<float>::max()))
+    fail(path, "is beyond float range (magnitude at most 3.4e38), got " + show(v));
+  return static_cast<float>(d);
 }
 
 int read_int(const json& v, const std::string& path) {
@@ -367,10 +356,11 @@ class MaterialIndex {
 /// length) is kept as written, so that saving and loading again gives the same bits.
 Vec3 read_normal(const json& v, const std::string& path) {
   const Vec3 n = read_vec3(v, path);
+  const Vec3 unit = unit_vector(n);
+  if (unit == Vec3(0.0f)) fail(path, "must be a non-zero vector, got " + show(v));
   const float len2 = glm::dot(n, n);
-  if (!(len2 > 0.0f)) fail(path, "must be a non-zero vector, got " + show(v));
   if (std::abs(len2 - 1.0f) <= 4.0f * std::numeric_limits<float>::epsilon()) return n;
-  return n / std::sqrt(len2);
+  return unit;
 }
 
 template <class Fn>
@@ -529,94 +519,6 @@ json material_json(const Material& m) {
   return j;
 }
 
-// ---------------------------------------------------------------------------------------------
-// Syntax errors with a path: a second, SAX pass over text that failed to parse tracks where the
-// parser was when it gave up.
-
-class PathTracker : public nlohmann::json_sax<json> {
- public:
-  bool null() override { return value(); }
-  bool boolean(bool) override { return value(); }
-  bool number_integer(number_integer_t) override { return value(); }
-  bool number_unsigned(number_unsigned_t) override { return value(); }
-  bool number_float(number_float_t, const string_t&) override { return value(); }
-  bool string(string_t&) override { return value(); }
-  bool binary(binary_t&) override { return value(); }
-  bool start_object(std::size_t) override {
-    value();
-    frames_.push_back({false, 0, {}});
-    return true;
-  }
-  bool key(string_t& k) override {
-    frames_.back().key = k;
-    return true;
-  }
-  bool end_object() override {
-    frames_.pop_back();
-    return true;
-  }
-  bool start_array(std::size_t) override {
-    value();
-    frames_.push_back({true, 0, {}});
-    return true;
-  }
-  bool end_array() override {
-    frames_.pop_back();
-    return true;
-  }
-  bool parse_error(std::size_t position, const std::string& last_token,
-                   const nlohmann::detail::exception& ex) override {
-    position_ = position;
-    last_token_ = last_token;
-    message_ = ex.what();
-    for (std::size_t i = 0; i < frames_.size(); ++i) {
-      const Frame& f = frames_[i];
-      const bool innermost = i + 1 == frames_.size();
-      if (!f.array && f.key.empty() && innermost) break;
-      path_.push_back('/');
-      path_.append(f.array ? std::to_string(innermost ? f.count : f.count - 1)
-                           : escape_pointer_token(f.key));
-    }
-    return false;
-  }
-
-  std::size_t position_ = 0;
-  std::string last_token_, message_, path_;
-
- private:
-  struct Frame {
-    bool array;
-    std::size_t count;  ///< Elements started so far (arrays).
-    std::string key;    ///< Last key read (objects).
-  };
-  bool value() {
-    if (!frames_.empty() && frames_.back().array) frames_.back().count++;
-    return true;
-  }
-  std::vector<Frame> frames_;
-};
-
-[[noreturn]] void fail_syntax(std::string_view text) {
-  PathTracker tracker;
-  json::sax_parse(text, &tracker);
-  // A NaN or Infinity literal (as some writers emit) is a value error, not a typo: find the word
-  // the parser stopped in.
-  auto in_word = [](char c) { return std::isalpha(static_cast<unsigned char>(c)) || c == '-'; };
-  std::size_t start = std::min(tracker.position_, text.size());
-  while (start > 0 && in_word(text[start - 1])) --start;
-  std::size_t end = start;
-  while (end < text.size() && in_word(text[end])) ++end;
-  const std::string_view word = text.substr(start, end - start);
-  for (std::string_view literal :
-       {"NaN", "nan", "-NaN", "-nan", "Infinity", "-Infinity", "inf", "-inf"})
-    if (word == literal) fail(tracker.path_, "must be a finite number, got " + std::string(word));
-  std::string msg = tracker.message_;
-  if (const std::size_t pos = msg.find("] ");
-      msg.rfind("[json.exception", 0) == 0 && pos != std::string::npos)
-    msg = msg.substr(pos + 2);
-  fail(tracker.path_, "invalid JSON: " + msg);
-}
-
 }  // namespace
 
 // ---------------------------------------------------------------------------------------------
@@ -691,8 +593,12 @@ Scene scene_from_json(const json& doc) {
 }
 
 Scene parse_scene_json(std::string_view text) {
-  json doc = json::parse(text, nullptr, /*allow_exceptions=*/false);
-  if (doc.is_discarded()) fail_syntax(text);
+  json doc;
+  try {
+    doc = input::parse_json(text);
+  } catch (const input::InputError& e) {
+    throw SceneError(e.what());
+  }
   return scene_from_json(doc);
 }
 

@@ -17,8 +17,9 @@ namespace tracer {
 /// triangles, and geometry.finalize() has been called on the result.
 Scene scene_from_json(const nlohmann::json& doc);
 
-/// Parses JSON text and builds the scene; syntax errors also name the JSON pointer where they
-/// occur (and a NaN or Infinity literal is reported as a non-finite number there).
+/// Parses JSON text (input::parse_json: nesting limit, duplicate keys refused) and builds the
+/// scene; syntax errors also name the JSON pointer and the line where they occur (and a NaN or
+/// Infinity literal is reported as a non-finite number there).
 Scene parse_scene_json(std::string_view text);
 
 /// Every key of the scene, defaults included, as scene_from_json reads it back: load, save and
