@@ -107,6 +107,8 @@ const SweepConfig& check_row(const json& row, const std::map<std::string, const 
     fail("scene", "must be \"" + definition.scenes[c.scene].name + "\" to match the key");
   if (row.value("structure", json()) != c.structure) fail("structure", "must be \"" + c.structure + "\" to match the key");
   if (row.value("requested", json()) != c.params) fail("requested", "must be " + input::brief(c.params, 80) + " to match the key");
+  if (row.value("integrator_params", json::object()) != c.integrator_params)
+    fail("integrator_params", "must be " + input::brief(c.integrator_params, 80) + " to match the key");
   const json status = row.value("status", json());
   if (status != "ok" && status != "failed" && status != "error")
     fail("status", "must be \"ok\", \"failed\" or \"error\", got " + input::brief(status));

@@ -41,7 +41,8 @@ void write_json_atomic(const std::string& path, const nlohmann::json& doc);
 std::map<std::string, const SweepConfig*> configs_by_key(const std::vector<SweepConfig>& configs);
 
 /// Checks that `row` is a row of one of `configs`: "key" a string naming a configuration, "index"
-/// that configuration's index, "scene", "structure" and "requested" matching it, "status" one of
+/// that configuration's index, "scene", "structure", "requested" and "integrator_params" (absent
+/// for none) matching it, "status" one of
 /// ok, failed, error, and an ok row's render_ms median a number >= 0. Returns the configuration.
 /// Throws SweepError "<where>/<field>: <what is wrong>".
 const SweepConfig& check_row(const nlohmann::json& row, const std::map<std::string, const SweepConfig*>& configs,
