@@ -1,6 +1,7 @@
 // `accelbench merge`: joins the results files of a sharded sweep into one.
 
 #include "commands.h"
+#include "fronts.h"
 #include "sweep_results.h"
 
 #include <CLI/CLI.hpp>
@@ -21,7 +22,8 @@ struct MergeFlags {
 int run(const MergeFlags& f) {
   std::vector<std::pair<std::string, nlohmann::json>> docs;
   for (const auto& path : f.inputs) docs.emplace_back(path, read_results_file(path));
-  const nlohmann::json merged = merge_results(docs);
+  nlohmann::json merged = merge_results(docs);
+  annotate_fronts(merged);  // fronts shards: the Pareto fronts over every shard's rows
   write_json_atomic(f.out, merged);
   const auto& missing = merged["missing"];
   std::fprintf(stderr, "merge: wrote %s: %zu rows from %zu files\n", f.out.c_str(), merged["rows"].size(),

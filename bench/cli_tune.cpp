@@ -7,6 +7,7 @@
 #include "sweep_results.h"
 #include "sweep_scene.h"
 #include "tune.h"
+#include "tune_accuracy.h"
 
 #include "accel/accel.h"
 
@@ -25,6 +26,7 @@ struct TuneFlags {
   std::string scene, accel = "kdtree", resolution = "320x240", placement, split, json_out, max_memory = "0";
   int threads = 1, repetitions = 3, warmup = 1;
   std::string seed = "1";
+  AccuracyTuneFlags accuracy;  ///< --max-error / --max-time: choose accuracy knobs instead.
 };
 
 /// "max_depth=9 max_leaf_size=6": the tuned knobs of a point.
@@ -132,7 +134,9 @@ int run(const TuneFlags& f) {
 void add_tune_command(CLI::App& app, int& exit_code) {
   auto flags = std::make_shared<TuneFlags>();
   CLI::App* cmd = app.add_subcommand(
-      "tune", "Find a structure's best max_depth x max_leaf_size on a scene (coarse grid, then refinement)");
+      "tune",
+      "Find a structure's best max_depth x max_leaf_size on a scene (coarse grid, then refinement); with "
+      "--max-error or --max-time, the accuracy knobs that meet the budget (docs/accuracy.md)");
   cmd->add_option("scene", flags->scene, "Generator name, generator:count, or scene file (.json, .nff)")
       ->required();
   cmd->add_option("--accel", flags->accel, "Structure to tune")->capture_default_str();
@@ -151,7 +155,16 @@ void add_tune_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--max-memory", flags->max_memory, "Build memory budget, e.g. 512M or 2G (0 = 25% of RAM)");
   cmd->add_option("--seed", flags->seed, "Generator seed, an integer in [0, 2^64-1]")->capture_default_str();
   cmd->add_option("--json", flags->json_out, "Also write every point as JSON to this file");
-  cmd->callback([flags, &exit_code] { exit_code = run(*flags); });
+  add_accuracy_tune_flags(*cmd, flags->accuracy);
+  cmd->callback([flags, &exit_code] {
+    const TuneFlags& f = *flags;
+    exit_code = accuracy_tune_requested(f.accuracy)
+                    ? run_accuracy_tune(f.accuracy,
+                                        TuneCommon{f.scene, f.accel, f.resolution, f.seed,
+                                                   f.threads, f.repetitions, f.warmup},
+                                        f.json_out)
+                    : run(f);
+  });
 }
 
 }  // namespace bench

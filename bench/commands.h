@@ -14,5 +14,6 @@ void add_sweep_command(CLI::App& app, int& exit_code);
 void add_tune_command(CLI::App& app, int& exit_code);
 void add_merge_command(CLI::App& app, int& exit_code);
 void add_convert_command(CLI::App& app, int& exit_code);
+void add_fronts_command(CLI::App& app, int& exit_code);
 
 }  // namespace bench

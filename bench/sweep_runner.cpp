@@ -126,6 +126,7 @@ RunSummary run_sweep(const SweepDefinition& definition, const RunOptions& option
   mo.integrator = definition.integrator;
   mo.validate_width = definition.validate_width;
   mo.validate_height = definition.validate_height;
+  mo.inspect = options.inspect;
   // Naive, the reference, is rendered at the validation resolution when one is set.
   MeasureOptions naive_mo = mo;
   if (definition.validates_apart()) {

@@ -4,6 +4,7 @@
 // SIGINT/SIGTERM, with what is done).
 
 #include "sweep_definition.h"
+#include "sweep_measure.h"
 
 #include <string>
 
@@ -17,6 +18,7 @@ struct RunOptions {
   int shard_index = 0;       ///< This shard, 0-based.
   int shard_count = 1;       ///< Number of shards.
   bool progress = true;      ///< Progress lines on stderr.
+  Inspector inspect;         ///< Optional: sees every ok configuration's image (fronts).
 };
 
 /// What a run did.

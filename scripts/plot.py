@@ -12,9 +12,13 @@ Reads only the results JSON files named on the command line and writes, as PNG a
                   break-even point against naive, per scene family
   build_vs_trace  build time against render time, and the rays it takes to pay for a build
 
-and prints a Markdown table of the best measured speedups beside the paper's.
+and prints a Markdown table of the best measured speedups beside the paper's. Results files of
+`accelbench fronts` (docs/accuracy.md) give instead, per scene:
 
-Usage: scripts/plot.py results/paper.json results/scaling.json [--out results]
+  fronts_<scene>  error against median render time for each accuracy knob, the Pareto front
+                  highlighted and the reference's own error (its floor) marked
+
+Usage: scripts/plot.py results/paper.json results/scaling.json [results/fronts-*.json] [--out results]
 """
 
 import argparse
@@ -442,20 +446,112 @@ def speedup_table(rows):
     return "\n".join(lines)
 
 
+def is_fronts(doc):
+    return isinstance(doc.get("sweep"), dict) and "fronts" in doc["sweep"]
+
+
+def load_docs(paths):
+    """(path, document) of every file, each checked to be a results file."""
+    docs = []
+    for path in paths:
+        try:
+            with open(path, encoding="utf-8") as f:
+                doc = json.load(f)
+        except (OSError, json.JSONDecodeError) as e:
+            raise PlotError(f"{path}: cannot read results: {e}") from e
+        if not isinstance(doc, dict) or doc.get("format") != "accelbench-results":
+            raise PlotError(f"{path}: /format: not an accelbench results file")
+        docs.append((path, doc))
+    return docs
+
+
+def knob_label(params, knobs):
+    """The values of a row's varied knobs, e.g. "8" or "8, 4"."""
+    return ", ".join(f"{params.get(k)}" for k in knobs)
+
+
+def plot_fronts(doc, out_dir):
+    """One figure per scene: error against time for each knob group, the front highlighted."""
+    metric = doc["sweep"]["fronts"].get("metric", "rmse")
+    eps = doc["sweep"]["fronts"].get("epsilon")
+    fronts = doc.get("fronts", [])
+    scenes = []
+    for f in fronts:
+        if f["scene"] not in scenes:
+            scenes.append(f["scene"])
+    drawn = []
+    for scene in scenes:
+        mine = [f for f in fronts if f["scene"] == scene]
+        cols = min(3, len(mine))
+        rows_n = (len(mine) + cols - 1) // cols
+        fig, axes = plt.subplots(rows_n, cols, figsize=(4.6 * cols, 3.8 * rows_n), squeeze=False)
+        setting = ""
+        for ax, front in zip(axes.flat, mine):
+            knobs = front["front"].split("*")
+            pts = []
+            for r in ok_rows(doc["rows"]):
+                if r.get("scene") != scene or r.get("front") != front["front"]:
+                    continue
+                err = (r.get("error") or {}).get(metric)
+                if err is None or err <= 0:
+                    continue  # a configuration equal to the reference (error 0) has no place on a log axis
+                pts.append((r["render_ms"]["median"], err, r.get("on_front", False),
+                            knob_label(r.get("integrator_params", {}), knobs)))
+                setting = setting_text(r)
+            if not pts:
+                ax.set_visible(False)
+                continue
+            off = [p for p in pts if not p[2]]
+            on = sorted((p for p in pts if p[2]), key=lambda p: p[0])
+            ax.scatter([p[0] for p in off], [p[1] for p in off], s=22, color="0.6", label="dominated", zorder=2)
+            ax.scatter([p[0] for p in on], [p[1] for p in on], s=30, color="tab:red", label="Pareto front", zorder=3)
+            if on:
+                ax.step([p[0] for p in on], [p[1] for p in on], where="post", color="tab:red", lw=1.2, zorder=2)
+            for t, e, _, label in pts:
+                ax.annotate(label, (t, e), textcoords="offset points", xytext=(4, 3), fontsize=7, color="0.25")
+            floor = front.get("floor")
+            if floor and floor > 0:
+                ax.axhline(floor, color="tab:blue", ls="--", lw=1, label="reference floor")
+            ax.set_xscale("log")
+            ax.set_yscale("log")
+            ax.set_xlabel("median render time (ms)")
+            ax.set_ylabel(metric.upper().replace("_", " ") if metric == "rmse" else f"relative MSE (eps {eps:g})")
+            ref = front.get("reference", {})
+            ax.set_title(f"{scene}: {' x '.join(knobs)}\nreference {ref.get('integrator', '')} "
+                         f"{json.dumps(ref.get('params', {}), separators=(',', ':'))}", fontsize=8)
+            ax.grid(True, which="both", alpha=0.25)
+            ax.legend(fontsize=7, loc="best")
+        for ax in list(axes.flat)[len(mine):]:
+            ax.set_visible(False)
+        fig.suptitle(f"Speed/accuracy fronts, {scene} ({setting})", fontsize=10)
+        fig.tight_layout()
+        save(fig, out_dir, f"fronts_{scene}")
+        drawn.append(scene)
+    return drawn
+
+
 def main(argv):
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("results", nargs="+", help="results JSON files (accelbench sweep/merge output)")
     parser.add_argument("--out", default="results", help="directory for the figures (default: results)")
     args = parser.parse_args(argv)
     try:
-        rows, _ = load_rows(args.results)
+        docs = load_docs(args.results)
+        sweeps = [p for p, d in docs if not is_fronts(d)]
+        rows, _ = load_rows(sweeps)
     except PlotError as e:
         print(f"plot: {e}", file=sys.stderr)
         return 1
-    if not ok_rows(rows):
+    fronts_docs = [d for _, d in docs if is_fronts(d)]
+    if not ok_rows(rows) and not fronts_docs:
         print("plot: no ok rows to plot", file=sys.stderr)
         return 1
     os.makedirs(args.out, exist_ok=True)
+    for doc in fronts_docs:
+        if not plot_fronts(doc, args.out):
+            print("plot: skipped a fronts file: it holds no fronts", file=sys.stderr)
+    if not ok_rows(rows):
+        return 0
     drawn = {
         "paper_speedup": plot_paper_speedup(rows, args.out),
         "heatmaps": plot_heatmaps(rows, args.out),

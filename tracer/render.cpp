@@ -110,8 +110,13 @@ void sample_offset(int x, int y, int s, int spp, float& jx, float& jy, std::uint
     jx = jy = 0.5f;
     return;
   }
-  const int m = int(std::ceil(std::sqrt(double(spp))));  // strata per row
-  const int rows = (spp + m - 1) / m;
+  // A rows x m grid of equal strata with exactly one sample each (rows the largest divisor of
+  // spp not above its square root), so the samples are uniform over the pixel and their mean is
+  // an unbiased estimate of its integral. (A ceil(sqrt(spp))-wide grid left the last row short
+  // when spp is not a square: 8 samples on 3 x 3 strata under-sample the bottom third.)
+  int rows = int(std::sqrt(double(spp)));
+  while (rows > 1 && spp % rows != 0) --rows;
+  const int m = spp / rows;  // strata per row
   std::uint64_t key =
       (std::uint64_t(std::uint32_t(y)) << 32 | std::uint32_t(x)) * 0x9e3779b97f4a7c15ull;
   if (seed != 0) key ^= mix64(seed ^ 0xd1b54a32d192ed03ull);  // seed 0: the historical pattern

@@ -78,10 +78,12 @@ const Integrator& spd_integrator();
 /// naming the first key); returns an empty object.
 nlohmann::json no_params(std::string_view integrator, const nlohmann::json& given);
 
-/// Sub-pixel offset in [0, 1)^2 of sample `s` of `spp` in pixel (x, y): stratified on a
-/// ceil(sqrt(spp)) grid and jittered by a hash of (x, y, s), so it is the same on every run and
-/// thread. A single sample sits at the pixel centre. Another `seed` gives another, independent
-/// jitter (seed 0 is the pattern of every render made before seeds existed).
+/// Sub-pixel offset in [0, 1)^2 of sample `s` of `spp` in pixel (x, y): one sample in each stratum
+/// of a rows x (spp / rows) grid (rows: the largest divisor of spp not above sqrt(spp); square
+/// spp: the sqrt(spp) x sqrt(spp) grid), jittered by a hash of (x, y, s), so it is the same on
+/// every run and thread and the samples are uniform over the pixel. A single sample sits at the
+/// pixel centre. Another `seed` gives another, independent jitter (seed 0: the pattern of every
+/// render made before seeds existed).
 void sample_offset(int x, int y, int s, int spp, float& jx, float& jy, std::uint64_t seed = 0);
 
 }  // namespace tracer

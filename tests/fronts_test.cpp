@@ -1,0 +1,369 @@
+// Speed/accuracy fronts (bench/fronts.h, bench/accuracy_reference.h, bench/tune_accuracy.h):
+// the definition a request expands to, bad input as one line naming what is wrong, a small run
+// end to end (errors, Pareto marking, the reference cache, resume, schema), and the accuracy
+// tuner honouring its budget.
+
+#include "bench/accuracy_reference.h"
+#include "bench/fronts.h"
+#include "bench/fronts_flags.h"
+#include "bench/sweep_results.h"
+#include "bench/tune_accuracy.h"
+
+#include "scenes_gen/generators.h"
+#include "tracer/render.h"
+
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <array>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+namespace {
+
+using nlohmann::json;
+namespace fs = std::filesystem;
+
+fs::path temp_dir(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / ("accelbench_fronts_" + name + "_" + std::to_string(getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+struct CliRun {
+  int status = -1;
+  std::string output;  // stdout and stderr together
+};
+
+CliRun accelbench(const std::string& args) {
+  const std::string cmd = std::string(ACCELBENCH_CLI) + " " + args + " 2>&1";
+  CliRun run;
+  FILE* pipe = popen(cmd.c_str(), "r");
+  if (!pipe) return run;
+  std::array<char, 4096> buf;
+  while (std::fgets(buf.data(), int(buf.size()), pipe)) run.output += buf.data();
+  const int raw = pclose(pipe);
+  run.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  return run;
+}
+
+bench::FrontsRequest small_request() {
+  bench::FrontsRequest r;
+  r.name = "t";
+  r.scenes = {bench::parse_scene_item("five")};
+  r.groups = {{"max_depth"}, {"spp"}};
+  r.values = {{"max_depth", {1, 2, 8}}, {"spp", {1, 4}}};
+  r.width = 24;
+  r.height = 18;
+  r.validate_width = 8;
+  r.validate_height = 6;
+  r.repetitions = 1;
+  r.warmup = 0;
+  r.settings.seeds = 3;
+  return r;
+}
+
+std::string definition_error(const bench::FrontsRequest& r) {
+  try {
+    bench::fronts_definition(r);
+  } catch (const bench::SweepError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+TEST(FrontsDefinition, GroupsBecomeIntegratorKnobGroupsWithTheFixedKnobs) {
+  bench::FrontsRequest r = small_request();
+  r.settings.fixed = {{"min_weight", 0.01}};
+  const bench::SweepDefinition d = bench::fronts_definition(r);
+  ASSERT_EQ(d.integrator_knobs.size(), 2u);
+  EXPECT_EQ(d.integrator_knobs[0].at("max_depth").size(), 3u);
+  EXPECT_EQ(d.integrator_knobs[0].at("min_weight"), std::vector<json>{0.01});
+  EXPECT_EQ(d.integrator_knobs[1].at("spp").size(), 2u);
+  EXPECT_EQ(bench::expand(d).size(), 5u);
+  // The default values of a knob come from its row: max depth 1 to 64, log-spaced.
+  r.values.erase("max_depth");
+  const auto depths = bench::fronts_definition(r).integrator_knobs[0].at("max_depth");
+  EXPECT_EQ(depths.front(), 1);
+  EXPECT_EQ(depths.back(), 64);
+  // Joint: one group, crossed.
+  r = small_request();
+  r.groups = {{"max_depth", "spp"}};
+  EXPECT_EQ(bench::expand(bench::fronts_definition(r)).size(), 6u);
+}
+
+TEST(FrontsDefinition, ReferencesDependOnlyOnTheStudiedKnobs) {
+  const bench::ReferenceSpec depth = bench::group_reference("whitted", {"max_depth"}, json::object(), 32, 24);
+  EXPECT_EQ(depth.params, json({{"max_depth", 64}, {"min_weight", 0}}));
+  EXPECT_FALSE(depth.stochastic);
+  EXPECT_EQ(depth.check, json({{"max_depth", 48}, {"min_weight", 0}}));
+  EXPECT_EQ(bench::group_reference("whitted", {"min_weight"}, json::object(), 32, 24).params, depth.params);
+  const bench::ReferenceSpec spp = bench::group_reference("whitted", {"spp"}, {{"max_depth", 5}}, 32, 24);
+  EXPECT_EQ(spp.params, json({{"max_depth", 5}, {"spp", 1024}}));  // at the front's own depth
+  EXPECT_TRUE(spp.stochastic);
+}
+
+TEST(FrontsDefinition, BadInputIsOneLineNamingWhatIsWrong) {
+  struct Case {
+    std::function<void(bench::FrontsRequest&)> edit;
+    std::string message;
+  };
+  const std::vector<Case> cases = {
+      {[](auto& r) { r.groups = {{"max_dept"}}; }, "--knobs: unknown knob 'max_dept': integrator whitted has the accuracy knobs max_depth, min_weight, spp"},
+      {[](auto& r) { r.values["spp"] = {}; }, "--values: knob 'spp' has an empty range"},
+      {[](auto& r) { r.values["min_weight"] = {0.1}; }, "--values: knob 'min_weight' is not among --knobs"},
+      {[](auto& r) { r.values["spp"] = {0.5}; }, "--values: whitted: knob 'spp' must be"},
+      {[](auto& r) { r.settings.fixed = {{"spp", 2}}; }, "--set: knob 'spp' is both varied (--knobs) and fixed (--set)"},
+      {[](auto& r) { r.settings.fixed = {{"colour", 2}}; }, "--set: whitted: unknown knob 'colour'"},
+      {[](auto& r) { r.groups = {{"spp"}, {"spp"}}; }, "--knobs: group spp is given twice"},
+      {[](auto& r) { r.integrator = "spd"; }, "--knobs: unknown knob 'max_depth': integrator spd has no accuracy knobs"},
+      {[](auto& r) { r.structure = "octre"; }, "fronts: /structures/0/name: unknown structure 'octre'"},
+  };
+  for (const auto& c : cases) {
+    bench::FrontsRequest r = small_request();
+    c.edit(r);
+    const std::string got = definition_error(r);
+    EXPECT_EQ(got.rfind(c.message, 0), 0u) << "got: " << got;
+    EXPECT_EQ(got.find('\n'), std::string::npos);
+  }
+  EXPECT_THROW(bench::parse_knob_values_text("", "--values x"), bench::SweepError);
+  EXPECT_THROW(bench::parse_knob_values_text("0:10:4", "--values x"), bench::SweepError);
+  EXPECT_EQ(bench::parse_knob_values_text("1:64:7", "--values x"), (std::vector<json>{1, 2, 4, 8, 16, 32, 64}));
+  EXPECT_EQ(bench::parse_knob_values_text("0.5,2,true,abc", "--values x"),
+            (std::vector<json>{0.5, 2, true, "abc"}));
+}
+
+/// Hand-made fronts results: one scene, points (ms, rmse) of two groups.
+json hand_made_results() {
+  json rows = json::array();
+  const std::vector<std::tuple<std::string, double, double>> points = {
+      {"max_depth", 10, 0.5}, {"max_depth", 20, 0.2}, {"max_depth", 25, 0.3},  // 25 ms is dominated
+      {"max_depth", 40, 0.05}, {"spp", 15, 0.4},      {"spp", 60, 0.01},
+      {"spp", 30, 0.2}};  // 30 ms, 0.2: dominated by 20 ms, 0.2
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const auto& [front, ms, err] = points[i];
+    rows.push_back({{"key", "k" + std::to_string(i)},
+                    {"scene", "s"},
+                    {"status", "ok"},
+                    {"front", front},
+                    {"integrator_params", {{front, int(i)}}},
+                    {"render_ms", {{"median", ms}}},
+                    {"error", {{"rmse", err}, {"rel_mse", err * err}}},
+                    {"reference", {{"floor", {{"rmse", 1e-3}, {"rel_mse", 1e-6}}}}}});
+  }
+  bench::FrontsSettings s;
+  s.groups = {{"max_depth"}, {"spp"}};
+  return {{"sweep", {{"fronts", bench::to_json(s)}}}, {"rows", rows}};
+}
+
+TEST(AccuracyTune, MaxErrorHonoursTheBudgetAndNothingFasterMeetsIt) {
+  const json results = hand_made_results();
+  for (double budget : {0.5, 0.45, 0.3, 0.2, 0.1, 0.05, 0.01}) {
+    const bench::AccuracyChoice c = bench::choose_within_error(results, "s", budget);
+    EXPECT_LE(c.error, budget);
+    for (const json& row : results["rows"])
+      if (row["render_ms"]["median"].get<double>() < c.render_ms) {
+        EXPECT_GT(row["error"]["rmse"].get<double>(), budget) << "faster and within budget: " << row["key"];
+      }
+    bool on_front = false;
+    for (const json& p : c.pareto) on_front = on_front || p["key"] == c.row["key"];
+    EXPECT_TRUE(on_front);
+  }
+  EXPECT_EQ(bench::choose_within_error(results, "s", 0.2).row["key"], "k1");
+  EXPECT_EQ(bench::choose_within_error(results, "s", 0.2, "spp").row["key"], "k6");
+  try {
+    bench::choose_within_error(results, "s", 0.001);
+    ADD_FAILURE() << "no error for an impossible budget";
+  } catch (const bench::SweepError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("--max-error: no configuration of s has rmse <= 0.001 (smallest: 0.01", 0), 0u)
+        << e.what();
+  }
+}
+
+TEST(AccuracyTune, MaxTimeGivesTheMostAccurateWithinIt) {
+  const json results = hand_made_results();
+  for (double budget : {10.0, 19.0, 20.0, 39.0, 45.0, 100.0}) {
+    const bench::AccuracyChoice c = bench::choose_within_time(results, "s", budget);
+    EXPECT_LE(c.render_ms, budget);
+    for (const json& row : results["rows"])
+      if (row["render_ms"]["median"].get<double>() <= budget) {
+        EXPECT_GE(row["error"]["rmse"].get<double>(), c.error);
+      }
+  }
+  EXPECT_THROW(bench::choose_within_time(results, "s", 5.0), bench::SweepError);
+  EXPECT_THROW(bench::choose_within_time(results, "nope", 50.0), bench::SweepError);
+}
+
+TEST(Fronts, AnnotationMarksExactlyTheNonDominatedRows) {
+  json results = hand_made_results();
+  bench::annotate_fronts(results);
+  std::vector<bool> on;
+  for (const json& row : results["rows"]) on.push_back(row["on_front"].get<bool>());
+  // Per group: max_depth {10,.5} {20,.2} {40,.05} on, {25,.3} off; spp {15,.4} {60,.01} on,
+  // {30,.2} on within its own group.
+  EXPECT_EQ(on, (std::vector<bool>{true, true, false, true, true, true, true}));
+  ASSERT_EQ(results["fronts"].size(), 2u);
+  EXPECT_EQ(results["fronts"][0]["smallest_error"], 0.05);
+  EXPECT_DOUBLE_EQ(results["fronts"][0]["floor_ratio"].get<double>(), 50.0);
+}
+
+TEST(Fronts, RunEndToEndWithCachedReferencesAndResume) {
+  const fs::path dir = temp_dir("run");
+  const bench::SweepDefinition d = bench::fronts_definition(small_request());
+  bench::RunOptions o;
+  o.out_path = (dir / "t.json").string();
+  o.jsonl_path = (dir / "t.jsonl").string();
+  o.progress = false;
+  bench::ReferenceOptions ro;
+  ro.cache_dir = (dir / "cache").string();
+  ro.validate_width = 8;
+  ro.validate_height = 6;
+  ro.progress = false;
+  const bench::FrontsSummary first = bench::run_fronts(d, o, ro);
+  EXPECT_TRUE(first.sweep.complete);
+  EXPECT_EQ(first.references_made, 2);  // one per group
+  EXPECT_EQ(first.references_cached, 0);
+  const json results = bench::read_results_file(o.out_path);
+  ASSERT_EQ(results["rows"].size(), 5u);
+  for (const json& row : results["rows"]) {
+    ASSERT_EQ(row["status"], "ok") << row.dump();
+    ASSERT_TRUE(row.contains("error") && row.contains("on_front"));
+    EXPECT_TRUE(row["error"]["rmse"].is_number());
+    if (row["front"] == "spp") {
+      // One sample per pixel sits at the pixel centre whatever the seed: all of its error is
+      // bias; four jittered samples vary with the seed.
+      ASSERT_TRUE(row.contains("bias_variance"));
+      EXPECT_EQ(row["bias_variance"]["stochastic"], row["integrator_params"]["spp"] == 4);
+    } else {
+      EXPECT_FALSE(row.contains("bias_variance"));  // a deterministic reference: no split
+    }
+  }
+  // Depth 1 is the least accurate and fastest; the error falls with depth on five's glass.
+  std::map<int, double> by_depth;
+  for (const json& row : results["rows"])
+    if (row["front"] == "max_depth") by_depth[row["integrator_params"]["max_depth"]] = row["error"]["rmse"];
+  EXPECT_GT(by_depth[1], by_depth[2]);
+  EXPECT_GT(by_depth[2], by_depth[8]);
+  ASSERT_EQ(results["fronts"].size(), 2u);
+  for (const json& f : results["fronts"]) {
+    EXPECT_GE(f["pareto"].size(), 1u);
+    EXPECT_TRUE(f["floor"].is_number());
+  }
+  // The references are cached: a fresh run reads them and finds the same errors.
+  fs::remove(o.jsonl_path);
+  const bench::FrontsSummary second = bench::run_fronts(d, o, ro);
+  EXPECT_EQ(second.references_made, 0);
+  EXPECT_EQ(second.references_cached, 2);
+  const json again = bench::read_results_file(o.out_path);
+  for (std::size_t i = 0; i < 5; ++i)
+    EXPECT_EQ(again["rows"][i]["error"], results["rows"][i]["error"]) << i;
+  // Resume: nothing left to measure.
+  o.resume = true;
+  const bench::FrontsSummary resumed = bench::run_fronts(d, o, ro);
+  EXPECT_EQ(resumed.sweep.measured, 0u);
+  EXPECT_EQ(bench::read_results_file(o.out_path)["rows"].size(), 5u);
+  // The results file follows the schema.
+  std::ofstream(dir / "validate.py") << "import json, sys\nimport jsonschema\n"
+                                        "schema = json.load(open(sys.argv[1]))\n"
+                                        "errors = list(jsonschema.Draft202012Validator(schema).iter_errors(json.load(open(sys.argv[2]))))\n"
+                                        "for e in errors[:5]: print(list(e.absolute_path), e.message[:300])\n"
+                                        "sys.exit(1 if errors else 0)\n";
+  const std::string cmd = std::string(ACCELBENCH_PYTHON) + " " + (dir / "validate.py").string() + " " +
+                          ACCELBENCH_SOURCE_DIR "/results/schema/results.schema.json " + o.out_path;
+  EXPECT_EQ(std::system(cmd.c_str()), 0);
+  fs::remove_all(dir);
+}
+
+TEST(AccuracyReference, HalvesGiveTheNoiseAndTheCacheKeyFollowsTheScene) {
+  scenes_gen::GenOptions g;
+  tracer::Scene scene = scenes_gen::generate("five", g);
+  const accel::AnyAccel built = accel::make_accel("bvh", json::object(), scene.geometry.primitive_bounds());
+  bench::ReferenceSpec spec;
+  spec.integrator = "whitted";
+  spec.params = {{"spp", 16}};
+  spec.stochastic = true;
+  spec.width = 24;
+  spec.height = 18;
+  bench::ReferenceOptions ro;
+  ro.progress = false;
+  const bench::AccuracyReference r = bench::obtain_reference(scene, built, spec, ro);
+  EXPECT_GT(r.floor.noise_rmse, 0.0);
+  EXPECT_EQ(r.floor.truncation_rmse, 0.0);
+  EXPECT_DOUBLE_EQ(r.floor.rmse, r.floor.noise_rmse);
+  // Independently: the mean of the halves is the reference, and half their RMSE is the noise.
+  tracer::RenderOptions o;
+  o.width = 24;
+  o.height = 18;
+  const auto a = tracer::render(scene, built, o, tracer::whitted_integrator(), {{"spp", 16}, {"seed", bench::kReferenceSeedA}});
+  const auto b = tracer::render(scene, built, o, tracer::whitted_integrator(), {{"spp", 16}, {"seed", bench::kReferenceSeedB}});
+  EXPECT_DOUBLE_EQ(r.floor.noise_rmse, tracer::image_error(a.image, b.image).rmse / 2);
+  const tracer::Image halves[2] = {a.image, b.image};
+  EXPECT_EQ(r.image, tracer::mean_image(halves));
+  // A 4x finer reference has a smaller floor.
+  spec.params["spp"] = 64;
+  EXPECT_LT(bench::obtain_reference(scene, built, spec, ro).floor.noise_rmse, r.floor.noise_rmse);
+  // The key changes with the scene and the spec, not with the order knobs were written in.
+  const std::string key = bench::reference_key(scene, spec);
+  spec.params = {{"spp", 64}};
+  EXPECT_EQ(bench::reference_key(scene, spec), key);
+  scene.lights[0].power_w *= 2;
+  EXPECT_NE(bench::reference_key(scene, spec), key);
+}
+
+TEST(FrontsCli, BadInputGivesOneLine) {
+  struct Case {
+    std::string args, message;
+  };
+  const std::vector<Case> cases = {
+      {"fronts five --knobs depth --no-cache", "accelbench: --knobs: unknown knob 'depth'"},
+      {"fronts five --knobs spp --values spp= --no-cache", "accelbench: --values spp: empty range"},
+      {"fronts five --knobs spp --values spp=0:4:3 --no-cache", "accelbench: --values spp: a log-spaced range"},
+      {"fronts five --knobs spp --metric l2 --no-cache", "accelbench: --metric: must be rmse or rel_mse"},
+      {"tune five --max-error 0.01", "accelbench: --max-error/--max-time: give --fronts FILE or --knobs LIST"},
+  };
+  for (const auto& c : cases) {
+    const CliRun run = accelbench(c.args);
+    EXPECT_NE(run.status, 0) << c.args;
+    EXPECT_EQ(run.output.rfind(c.message, 0), 0u) << c.args << "\n got: " << run.output;
+    EXPECT_EQ(std::count(run.output.begin(), run.output.end(), '\n'), 1) << run.output;
+  }
+}
+
+TEST(FrontsCli, TuneAnswersFromAFrontsFileOrSaysWhichBudgetNothingMeets) {
+  const fs::path dir = temp_dir("cli");
+  const std::string out = (dir / "f.json").string();
+  const CliRun fronts = accelbench("fronts five --knobs max_depth --values max_depth=1,2,8 --resolution 24x18 "
+                                   "--validate-resolution 8x6 --repetitions 1 --warmup 0 --seeds 1 --quiet --cache " +
+                                   (dir / "cache").string() + " --out " + out);
+  ASSERT_EQ(fronts.status, 0) << fronts.output;
+  EXPECT_NE(fronts.output.find("front max_depth"), std::string::npos) << fronts.output;
+  const CliRun ok = accelbench("tune five --max-error 1e9 --fronts " + out + " --json " + (dir / "c.json").string());
+  ASSERT_EQ(ok.status, 0) << ok.output;
+  EXPECT_NE(ok.output.find("<- chosen"), std::string::npos) << ok.output;
+  std::ifstream in(dir / "c.json");
+  const json choice = json::parse(in);
+  // Anything meets a huge budget: the answer is the fastest row measured.
+  std::ifstream rin(out);
+  const json measured = json::parse(rin);
+  double fastest = 1e300;
+  std::string fastest_key;
+  for (const json& row : measured["rows"])
+    if (row["render_ms"]["median"].get<double>() < fastest) {
+      fastest = row["render_ms"]["median"];
+      fastest_key = row["key"];
+    }
+  EXPECT_EQ(choice["key"], fastest_key);
+  const CliRun none = accelbench("tune five --max-error 0 --fronts " + out);
+  EXPECT_NE(none.status, 0);
+  EXPECT_EQ(none.output.rfind("accelbench: --max-error: no configuration of five has rmse <= 0 (smallest: ", 0), 0u)
+      << none.output;
+  fs::remove_all(dir);
+}
+
+}  // namespace
