@@ -3,6 +3,8 @@
 #include "integrators.h"
 #include "sweep_machine.h"
 
+#include "input/file_read.h"
+#include "input/json_read.h"
 #include "tracer/render.h"
 #include "tracer/scene_json.h"
 
@@ -24,6 +26,9 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 using Clock = std::chrono::steady_clock;
+
+/// Largest reference metadata file read from the cache (ours are a few kilobytes).
+constexpr std::uint64_t kMaxReferenceMetaBytes = std::uint64_t(1) << 20;
 
 std::uint64_t fnv1a(const std::string& text) {
   std::uint64_t h = 0xcbf29ce484222325ull;
@@ -90,8 +95,7 @@ std::optional<AccuracyReference> read_cached(const fs::path& dir, const std::str
   std::error_code ec;
   if (!fs::is_regular_file(meta, ec) || !fs::is_regular_file(pfm, ec)) return std::nullopt;
   try {
-    std::ifstream in(meta);
-    const json info = json::parse(in);
+    const json info = input::parse_json(input::read_file(meta.string(), kMaxReferenceMetaBytes, "reference metadata"));
     if (info.value("key", "") != key || info.value("version", 0) != kReferenceVersion ||
         info.value("spec", json()) != to_json(spec))
       return std::nullopt;

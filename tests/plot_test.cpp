@@ -45,6 +45,16 @@ TEST(Plot, DrawsEveryFigureFromTheSmallResultsFile) {
   EXPECT_NE(log.find("| spheres8000 |"), std::string::npos) << log;
   EXPECT_NE(log.find("| 3.8 |"), std::string::npos) << log;
 
+  // A fronts results file (accelbench fronts) gives one speed/accuracy figure per scene, alone or
+  // beside sweep results.
+  ASSERT_EQ(run_plot(ACCELBENCH_SOURCE_DIR "/tests/data/small_fronts.json", dir / "fronts", dir / "log3.txt"), 0)
+      << read(dir / "log3.txt");
+  const std::string fronts_png = read(dir / "fronts" / "fronts_five.png");
+  ASSERT_GT(fronts_png.size(), 10000u);
+  EXPECT_EQ(fronts_png.substr(1, 3), "PNG");
+  EXPECT_NE(read(dir / "fronts" / "fronts_five.svg").find("<svg"), std::string::npos);
+  EXPECT_FALSE(fs::exists(dir / "fronts" / "paper_speedup.png"));
+
   std::ofstream(dir / "not_results.json") << "{\"rows\": []}";
   EXPECT_EQ(run_plot((dir / "not_results.json").string(), dir / "fig2", dir / "log2.txt"), 1);
   EXPECT_NE(read(dir / "log2.txt").find("/format: not an accelbench results file"), std::string::npos);
