@@ -102,6 +102,16 @@ class NanoflannPhotons {
     return result.size();
   }
 
+  /// nanoflann's own unbounded kNN (its KNNResultSet), nearest first; returns how many were
+  /// found (k, or all photons when there are fewer).
+  std::size_t knn_unbounded(const photon::Vec3& q, std::size_t k, std::vector<std::uint32_t>& indices,
+                            std::vector<float>& d2) const {
+    if (indices.size() < k) indices.resize(k);
+    if (d2.size() < k) d2.resize(k);
+    const float qv[3] = {q.x, q.y, q.z};
+    return index_->knnSearch(qv, k, indices.data(), d2.data());
+  }
+
  private:
   PhotonCloud cloud_;
   std::unique_ptr<Index> index_;

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <bit>
 #include <chrono>
+#include <thread>
 
 namespace photon {
 
@@ -33,61 +34,96 @@ std::uint32_t left_subtree_size(std::uint32_t n) {
   return half - 1 + std::min(last, half);
 }
 
+/// Partitions items[0, n) so that items[m] is where it would be sorted along `axis`, with no
+/// larger coordinate before it and no smaller after it (std::nth_element, one instantiation per
+/// axis so the comparison reads a constant offset). Measured on 10^6 photons against two
+/// alternatives, not kept: Floyd-Rivest selection (1.3x the instructions: every pair of items is
+/// swapped while partitioning) and a quickselect with a branch-free partition (a quarter of the
+/// mispredicted branches but twice the instructions); all three took the same time.
+template <int Axis>
+void select_on(Item* items, std::uint32_t m, std::uint32_t n) {
+  std::nth_element(items, items + m, items + n,
+                   [](const Item& a, const Item& b) { return a.p[Axis] < b.p[Axis]; });
+}
+
+void select_median(Item* items, std::uint32_t m, std::uint32_t n, int axis) {
+  if (axis == 0) select_on<0>(items, m, n);
+  else if (axis == 1) select_on<1>(items, m, n);
+  else select_on<2>(items, m, n);
+}
+
 class Builder {
  public:
   Builder(std::span<const Photon> in, std::vector<Photon>& heap, std::vector<std::uint32_t>& ids)
       : in_(in), heap_(heap), ids_(ids) {}
 
-  void build(Item* items, std::uint32_t n, std::uint32_t node, accel::Aabb cell, int depth) {
-    depth_ = std::max(depth_, depth);
-    if (n == 0) return;
+  /// Builds the subtree of `node` over items[0, n) in `cell`; returns its depth (levels). Up to
+  /// `threads` threads: the upper child's subtree goes to a new thread while this one builds the
+  /// lower. Subtrees write disjoint nodes, so the tree is the same with any number of threads.
+  int build(Item* items, std::uint32_t n, std::uint32_t node, accel::Aabb cell, int threads) {
+    if (n == 0) return 0;
     const std::uint32_t m = left_subtree_size(n);
     int axis = 3;  // a leaf
     if (n > 1) {
       axis = cell.longest_axis();
-      std::nth_element(items, items + m, items + n,
-                       [axis](const Item& a, const Item& b) { return a.p[axis] < b.p[axis]; });
+      select_median(items, m, n, axis);
     }
     const Item& median = items[m];
     Photon& p = heap_[node];
     p = in_[median.id];
     p.flags = std::uint16_t(axis);
     ids_[node] = median.id;
-    if (n == 1) return;
+    if (n == 1) return 1;
     const float split = median.p[axis];
     accel::Aabb lower = cell, upper = cell;
     lower.hi[axis] = split;
     upper.lo[axis] = split;
-    build(items, m, 2 * node, lower, depth + 1);
-    build(items + m + 1, n - m - 1, 2 * node + 1, upper, depth + 1);
+    if (threads > 1 && n >= kMinParallel) {
+      int upper_depth = 0;
+      std::thread t([&] {
+        upper_depth = build(items + m + 1, n - m - 1, 2 * node + 1, upper, threads / 2);
+      });
+      int lower_depth = 0;
+      try {
+        lower_depth = build(items, m, 2 * node, lower, threads - threads / 2);
+      } catch (...) {
+        t.join();
+        throw;
+      }
+      t.join();
+      return 1 + std::max(lower_depth, upper_depth);
+    }
+    const int lower_depth = build(items, m, 2 * node, lower, 1);
+    return 1 + std::max(lower_depth, build(items + m + 1, n - m - 1, 2 * node + 1, upper, 1));
   }
-  int depth() const { return depth_; }
 
  private:
+  /// Subtrees smaller than this are not worth a thread.
+  static constexpr std::uint32_t kMinParallel = 1u << 15;
+
   std::span<const Photon> in_;
   std::vector<Photon>& heap_;
   std::vector<std::uint32_t>& ids_;
-  int depth_ = 0;
 };
 
 }  // namespace
 
-BalancedTree::BalancedTree(std::span<const Photon> photons) {
+BalancedTree::BalancedTree(std::span<const Photon> photons, int build_threads) {
   const auto t0 = std::chrono::steady_clock::now();
   const std::uint32_t n = std::uint32_t(photons.size());
   if (n > 0) {
     std::vector<Item> items(n);
-    accel::Aabb bounds;
     for (std::uint32_t i = 0; i < n; ++i) {
       const Vec3& p = photons[i].position;
       items[i] = {{p.x, p.y, p.z}, i};
-      bounds.grow(p);
+      bounds_.grow(p);
     }
     heap_.resize(std::size_t(n) + 1);
     ids_.resize(std::size_t(n) + 1);
     Builder b(photons, heap_, ids_);
-    b.build(items.data(), n, 1, bounds, 1);
-    stats_.depth = b.depth();
+    const int threads = build_threads > 0 ? build_threads
+                                          : int(std::max(1u, std::thread::hardware_concurrency()));
+    stats_.depth = b.build(items.data(), n, 1, bounds_, threads);
   }
   stats_.photons = n;
   stats_.nodes = n;

@@ -1,8 +1,9 @@
 #pragma once
-// An unbalanced photon kd-tree with leaf buckets: inner cells split one axis at a plane, leaves
-// hold up to leaf_size photons stored contiguously. Nodes are accel's 8-byte kd-tree node (the
-// lower child follows its parent, the upper child's index is stored). Built by the sliding-
-// midpoint rule in sliding_midpoint_builder.cpp.
+// A photon kd-tree with leaf buckets: inner cells split one axis at a plane, leaves hold up to
+// leaf_size photons stored contiguously. Nodes are accel's 8-byte kd-tree node (the lower child
+// follows its parent, the upper child's index is stored). Built by the sliding-midpoint rule
+// (sliding_midpoint_builder.cpp, unbalanced) or the median rule (median_bucket_builder.cpp,
+// balanced); the recursion they share is bucket_builder.h.
 //
 // The search keeps, per cell, the offset of the query from the cell along each axis (Arya and
 // Mount's incremental distance): a far child's lower bound is the squared length of that offset
@@ -31,7 +32,20 @@ class BucketTree {
   /// Builds over `photons` (original index = position in the span) with the sliding-midpoint
   /// rule and leaves of at most `leaf_size` photons (except cells of coincident photons and
   /// cells at kMaxDepth).
-  BucketTree(std::span<const Photon> photons, int leaf_size);
+  static BucketTree sliding_midpoint(std::span<const Photon> photons, int leaf_size);
+  /// The same with the median rule (a balanced tree).
+  static BucketTree median(std::span<const Photon> photons, int leaf_size);
+  /// A built tree: photons and their original indices in leaf order, nodes root first.
+  BucketTree(std::vector<Photon> photons, std::vector<std::uint32_t> ids,
+             std::vector<accel::KdNode> nodes, const accel::Aabb& bounds, PhotonTreeStats stats)
+      : photons_(std::move(photons)), ids_(std::move(ids)), nodes_(std::move(nodes)),
+        bounds_(bounds), stats_(stats) {
+    stats_.photons = photons_.size();
+    stats_.nodes = nodes_.size();
+    stats_.memory_bytes = photons_.capacity() * sizeof(Photon) +
+                          ids_.capacity() * sizeof(std::uint32_t) +
+                          nodes_.capacity() * sizeof(accel::KdNode);
+  }
 
   /// Photons in leaf order.
   std::span<const Photon> storage() const { return photons_; }

@@ -81,6 +81,8 @@ class Neighbors {
   template <bool Count, bool Cull, bool Cache>
   friend class GatherState;
   std::vector<Neighbor> items_;
+  std::vector<std::uint64_t> keys_;   // the gather's heap: (d2 bits << 32 | original index)
+  std::vector<std::uint32_t> slots_;  // and the storage slot of each entry
   int count_ = 0;
   int k_ = 0;
   float max_radius2_ = 0.0f;

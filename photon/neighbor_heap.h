@@ -13,6 +13,7 @@
 #include "knn.h"
 #include "photon.h"
 
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -27,7 +28,12 @@ inline float distance2(const Vec3& q, const Vec3& p) {
 }
 
 /// One gather in progress. Count: update counters; Cull: hemisphere test before the heap;
-/// Cache: heap entries keep their squared distance (off: recomputed at every comparison).
+/// Cache: the heap keeps each photon's squared distance in its key (off: every comparison
+/// recomputes it from the positions).
+///
+/// The heap orders 64-bit keys (bits of d2 << 32 | original index): d2 >= +0 is never NaN, so
+/// its bits order as the floats do, and one integer comparison settles distance and tie alike,
+/// without a branch for the tie. The storage slots move alongside the keys.
 template <bool Count, bool Cull, bool Cache>
 class GatherState {
  public:
@@ -41,8 +47,13 @@ class GatherState {
     out.count_ = 0;
     out.max_radius2_ = r2;
     out.sorted_ = false;
-    if (out.items_.size() < std::size_t(k)) out.items_.resize(std::size_t(k));
-    heap_ = out.items_.data();
+    if (out.slots_.size() < std::size_t(k)) {
+      out.items_.resize(std::size_t(k));
+      out.keys_.resize(std::size_t(k));
+      out.slots_.resize(std::size_t(k));
+    }
+    keys_ = out.keys_.data();
+    slots_ = out.slots_.data();
     bound2_ = std::nextafter(r2, 0.0f);
     if constexpr (Count) c_->lookups++;
   }
@@ -50,11 +61,11 @@ class GatherState {
   GatherState(const GatherState&) = delete;
   GatherState& operator=(const GatherState&) = delete;
 
-  /// Hands the photons found to the Neighbors (with their squared distances).
+  /// Hands the photons found to the Neighbors (heap order, with their squared distances).
   void finish() {
-    if constexpr (!Cache) {
-      for (int i = 0; i < count_; ++i) heap_[i].d2 = d2_of(heap_[i]);
-    }
+    Neighbor* items = out_.items_.data();
+    for (int i = 0; i < count_; ++i)
+      items[i] = {std::bit_cast<float>(std::uint32_t(key_at(i) >> 32)), slots_[i]};
     out_.count_ = count_;
     if constexpr (Count) c_->photons_found += std::uint64_t(count_);
   }
@@ -84,44 +95,56 @@ class GatherState {
   }
 
  private:
-  std::uint32_t id(std::uint32_t slot) const { return ids_ ? ids_[slot] : slot; }
-  float d2_of(const Neighbor& e) const {
-    if constexpr (Cache) return e.d2;
-    return distance2(q_, photons_[e.slot].position);
+  static std::uint64_t make_key(float d2, std::uint32_t id) {
+    return std::uint64_t(std::bit_cast<std::uint32_t>(d2)) << 32 | id;
   }
-  /// (d2, id) of a strictly after b.
-  bool after(const Neighbor& a, const Neighbor& b) const {
-    const float da = d2_of(a), db = d2_of(b);
-    return da > db || (da == db && id(a.slot) > id(b.slot));
+  std::uint32_t id(std::uint32_t slot) const { return ids_ ? ids_[slot] : slot; }
+  /// The key of heap entry i: kept (Cache) or recomputed from the photon.
+  std::uint64_t key_at(int i) const {
+    if constexpr (Cache) return keys_[i];
+    const std::uint32_t slot = slots_[i];
+    return make_key(distance2(q_, photons_[slot].position), id(slot));
   }
   void sift_down(int i) {
-    const Neighbor e = heap_[i];
+    const std::uint64_t key = key_at(i);
+    const std::uint32_t slot = slots_[i];
     for (;;) {
       int child = 2 * i + 1;
       if (child >= count_) break;
-      if (child + 1 < count_ && after(heap_[child + 1], heap_[child])) ++child;
-      if (!after(heap_[child], e)) break;
-      heap_[i] = heap_[child];
+      std::uint64_t child_key = key_at(child);
+      if (child + 1 < count_) {
+        const std::uint64_t right = key_at(child + 1);
+        const bool take_right = right > child_key;
+        child += take_right;
+        child_key = take_right ? right : child_key;
+      }
+      if (child_key <= key) break;
+      if constexpr (Cache) keys_[i] = child_key;
+      slots_[i] = slots_[child];
       i = child;
     }
-    heap_[i] = e;
+    if constexpr (Cache) keys_[i] = key;
+    slots_[i] = slot;
   }
   void insert(float d2, std::uint32_t slot) {
+    const std::uint64_t key = make_key(d2, id(slot));
     if (count_ < k_) {
-      heap_[count_++] = {Cache ? d2 : 0.0f, slot};
+      if constexpr (Cache) keys_[count_] = key;
+      slots_[count_++] = slot;
       if constexpr (Count) c_->heap_inserts++;
       if (count_ == k_) {
         for (int i = k_ / 2 - 1; i >= 0; --i) sift_down(i);
-        bound2_ = d2_of(heap_[0]);
+        bound2_ = std::bit_cast<float>(std::uint32_t(key_at(0) >> 32));
       }
       return;
     }
-    // Full: d2 <= top; at a tie the lower index wins.
-    if (d2 == bound2_ && id(slot) > id(heap_[0].slot)) return;
+    // Full, and d2 <= the top's: at a tie the lower index wins, in the same comparison.
+    if (key >= key_at(0)) return;
     if constexpr (Count) c_->heap_inserts++;
-    heap_[0] = {Cache ? d2 : 0.0f, slot};
+    if constexpr (Cache) keys_[0] = key;
+    slots_[0] = slot;
     sift_down(0);
-    bound2_ = d2_of(heap_[0]);
+    bound2_ = std::bit_cast<float>(std::uint32_t(key_at(0) >> 32));
   }
 
   const Photon* photons_;
@@ -129,7 +152,8 @@ class GatherState {
   Vec3 q_, n_;
   int k_;
   int count_ = 0;
-  Neighbor* heap_ = nullptr;
+  std::uint64_t* keys_ = nullptr;
+  std::uint32_t* slots_ = nullptr;
   float bound2_ = 0.0f;
   Neighbors& out_;
   GatherCounters* c_;

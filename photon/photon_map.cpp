@@ -17,6 +17,7 @@ std::uint64_t peak_bytes(std::uint64_t n, const PhotonTreeParams& p) {
     case PhotonTreeKind::Balanced:
       return (n + 1) * (sizeof(Photon) + 4) + n * 16;
     case PhotonTreeKind::SlidingMidpoint:
+    case PhotonTreeKind::MedianBuckets:
       return n * (sizeof(Photon) + 4 + 16) + (2 * n / std::uint64_t(p.leaf_size) + 2) * 8;
   }
   return 0;
@@ -48,10 +49,13 @@ PhotonMap::PhotonMap(std::span<const Photon> photons, const PhotonTreeParams& pa
       tree_.emplace<BruteForce>(photons);
       break;
     case PhotonTreeKind::Balanced:
-      tree_.emplace<BalancedTree>(photons);
+      tree_.emplace<BalancedTree>(photons, params.build_threads);
       break;
     case PhotonTreeKind::SlidingMidpoint:
-      tree_.emplace<BucketTree>(photons, params.leaf_size);
+      tree_ = BucketTree::sliding_midpoint(photons, params.leaf_size);
+      break;
+    case PhotonTreeKind::MedianBuckets:
+      tree_ = BucketTree::median(photons, params.leaf_size);
       break;
   }
   std::visit(

@@ -17,16 +17,24 @@ enum class PhotonTreeKind : std::uint8_t {
   /// photon when one side would be empty (Maneewongvatana and Mount 1999); photons in leaf
   /// buckets of at most `leaf_size`.
   SlidingMidpoint,
+  /// Balanced with leaf buckets: the median of the cell's longest axis, as `balanced`, but the
+  /// nodes, leaves and search of `sliding_midpoint`; the two differ only in balance.
+  MedianBuckets,
   /// No tree: every photon tested. The reference of the tests and benchmarks.
   BruteForce,
 };
 
 /// Knobs of a photon map's tree.
 struct PhotonTreeParams {
-  /// Tree variant (JSON: "balanced", "sliding_midpoint", "brute_force").
+  /// Tree variant (JSON: "balanced", "sliding_midpoint", "median_buckets", "brute_force").
   PhotonTreeKind photon_tree = PhotonTreeKind::Balanced;
-  /// Bucket trees: a cell with this many photons or fewer is a leaf, photons, 1..256.
-  int leaf_size = 8;
+  /// Bucket trees: a cell with this many photons or fewer is a leaf, photons, 1..256. 16: on
+  /// the Cornell stand-in, leaves of 12 to 32 gathered within a few per cent of each other for
+  /// k = 1..200 and 10^4..10^6 photons, 8 was 10-25 % slower (docs/photon-kdtree.md).
+  int leaf_size = 16;
+  /// Threads building a balanced tree, 0 = one per core, 1..256; the tree is the same for any
+  /// count. (The bucket trees build on one thread.)
+  int build_threads = 0;
 };
 
 /// The JSON spelling of a variant.

@@ -2,7 +2,9 @@
 // ceil(log2(N + 1)), every node the median of its cell along the cell's longest axis.
 
 #include "photon/balanced_tree.h"
+#include "photon/photon_tree_params.h"
 
+#include "accel/accel.h"
 #include "accel/geometry.h"
 #include "photon_sets.h"
 
@@ -11,6 +13,8 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <cstring>
+#include <string>
 #include <vector>
 
 namespace {
@@ -96,6 +100,49 @@ TEST(BalancedTree, LargeTreeDepthAndStats) {
   EXPECT_EQ(t.stats().nodes, 100000u);
   EXPECT_EQ(t.stats().leaves, 50000u);
   EXPECT_GE(t.stats().memory_bytes, 100001u * 24u);
+}
+
+}  // namespace
+
+namespace {
+
+TEST(BalancedTree, SameTreeOnAnyNumberOfThreads) {
+  const auto photons = photon_sets::make_set(SetKind::Clustered, 200000, 9);
+  const BalancedTree one(photons, 1);
+  for (const int threads : {2, 7, 0}) {
+    const BalancedTree many(photons, threads);
+    ASSERT_EQ(many.size(), one.size());
+    EXPECT_EQ(many.stats().depth, one.stats().depth);
+    bool same = true;
+    for (std::size_t i = 1; i <= one.size() && same; ++i)
+      same = std::memcmp(&many.storage()[i], &one.storage()[i], sizeof(Photon)) == 0 &&
+             many.ids()[i] == one.ids()[i];
+    EXPECT_TRUE(same) << threads << " threads";
+  }
+}
+
+TEST(BalancedTree, ParamsJsonNamesTheKnob) {
+  const auto error = [](const char* text) -> std::string {
+    try {
+      nlohmann::json::parse(text).get<photon::PhotonTreeParams>();
+    } catch (const accel::ConfigError& e) {
+      return e.what();
+    }
+    return "no error";
+  };
+  EXPECT_EQ(error(R"({"photon_tree": "kd"})"),
+            "photon map: parameter 'photon_tree' must be one of "
+            "balanced|sliding_midpoint|median_buckets|brute_force, got 'kd'");
+  EXPECT_EQ(error(R"({"leaf_size": 0})"), "photon map: parameter 'leaf_size' must be in [1, 256], got 0");
+  EXPECT_EQ(error(R"({"build_threads": -1})"),
+            "photon map: parameter 'build_threads' must be in [0, 256], got -1");
+  EXPECT_EQ(error(R"({"leafsize": 4})"), "photon map: unknown parameter 'leafsize'");
+  const photon::PhotonTreeParams p =
+      nlohmann::json(photon::PhotonTreeParams{photon::PhotonTreeKind::MedianBuckets, 24, 3})
+          .get<photon::PhotonTreeParams>();
+  EXPECT_EQ(p.photon_tree, photon::PhotonTreeKind::MedianBuckets);
+  EXPECT_EQ(p.leaf_size, 24);
+  EXPECT_EQ(p.build_threads, 3);
 }
 
 }  // namespace

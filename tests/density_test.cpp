@@ -159,6 +159,7 @@ TEST(Density, SameBitsFromEveryTreeVariant) {
   maps.emplace_back(photons, photon::PhotonTreeParams{PhotonTreeKind::BruteForce, 8});
   maps.emplace_back(photons, photon::PhotonTreeParams{PhotonTreeKind::Balanced, 8});
   maps.emplace_back(photons, photon::PhotonTreeParams{PhotonTreeKind::SlidingMidpoint, 4});
+  maps.emplace_back(photons, photon::PhotonTreeParams{PhotonTreeKind::MedianBuckets, 16});
   Neighbors nb;
   for (const DensityFilter f : {DensityFilter::Box, DensityFilter::Cone, DensityFilter::Biweight}) {
     for (const Vec3& q : queries) {

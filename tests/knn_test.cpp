@@ -91,6 +91,7 @@ constexpr Variant kVariants[] = {
     {PhotonTreeKind::BruteForce, 8},      {PhotonTreeKind::Balanced, 8},
     {PhotonTreeKind::SlidingMidpoint, 1}, {PhotonTreeKind::SlidingMidpoint, 3},
     {PhotonTreeKind::SlidingMidpoint, 8}, {PhotonTreeKind::SlidingMidpoint, 32},
+    {PhotonTreeKind::MedianBuckets, 1},   {PhotonTreeKind::MedianBuckets, 8},
 };
 
 std::string variant_name(const Variant& v) {
