@@ -67,23 +67,34 @@ class BalancedTree {
       s.count_node();
       const std::uint32_t left = 2 * i;
       if (left > n) {
-        s.consider(i);
+        s.consider(i);  // a leaf popped from the stack
       } else {
         const Photon& p = heap[i];
         const int axis = p.flags & 3;
         const float delta = q[axis] - (&p.position.x)[axis];
-        const std::uint32_t near = delta < 0.0f ? left : left + 1;
-        const std::uint32_t far = delta < 0.0f ? left + 1 : left;
-        Pending e{far, 0.0f, {off[0], off[1], off[2]}};
+        // Arithmetic, not branches: which side the query is on is a coin toss for the predictor.
+        const std::uint32_t near = left + (delta >= 0.0f);
+        const std::uint32_t far = left + (delta < 0.0f);
+        Pending& e = stack[sp];
+        e = {far, 0.0f, {off[0], off[1], off[2]}};
         e.off[axis] = delta;
         e.bound2 = e.off[0] * e.off[0] + e.off[1] * e.off[1] + e.off[2] * e.off[2];
-        if (e.bound2 <= s.bound2()) {
-          if (far <= n) stack[sp++] = e;
-          s.consider(i);
-        }
-        if (near <= n) {
+        s.consider(i);
+        if (2 * left <= n) {
+          // Both children exist and at least the left one is inner: go near, keep far.
+          ++sp;
           i = near;
           continue;
+        }
+        // The children are leaves (the right one may be missing): offer them here, which saves
+        // a descent and a leaf test per leaf.
+        if (near <= n) {
+          s.count_node();
+          s.consider(near);
+        }
+        if (far <= n && e.bound2 <= s.bound2()) {
+          s.count_node();
+          s.consider(far);
         }
       }
       for (;;) {

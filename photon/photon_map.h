@@ -15,6 +15,7 @@
 
 #include "accel/accel.h"
 
+#include <cmath>
 #include <cstdint>
 #include <span>
 #include <variant>
@@ -56,7 +57,8 @@ class PhotonMap {
   const AnyPhotonTree& tree() const { return tree_; }
 
   /// The k nearest photons to `position` within params.max_radius (knn.h); with params.cull,
-  /// only photons arriving from the side `normal` points to (a zero normal culls nothing).
+  /// only photons arriving from the side `normal` points to (a zero normal culls nothing). A
+  /// position with a non-finite coordinate finds nothing.
   /// Count: add the work done to *counters. Throws accel::ConfigError for a bad knob.
   template <bool Count = false>
   void gather(const Vec3& position, const Vec3& normal, const GatherParams& params,
@@ -70,6 +72,13 @@ class PhotonMap {
   template <bool Count = false, class Tree>
   static void gather_in(const Tree& tree, const Vec3& position, const Vec3& normal,
                         const GatherParams& params, Neighbors& out, GatherCounters* counters) {
+    if (!std::isfinite(position.x) || !std::isfinite(position.y) || !std::isfinite(position.z)) {
+      // No photon has a distance to such a point: nothing is found.
+      GatherState<Count, false, true>(tree.storage().data(), tree.ids(), Vec3(0.0f), normal,
+                                      params.k, params.max_radius, out, counters)
+          .finish();
+      return;
+    }
     const bool cull = params.cull && (normal.x != 0.0f || normal.y != 0.0f || normal.z != 0.0f);
     if (cull) {
       if (params.cache_distances)

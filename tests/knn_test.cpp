@@ -209,6 +209,19 @@ TEST(Knn, EmptyMapAndFewerThanK) {
   }
 }
 
+TEST(Knn, NonFiniteQueryFindsNothing) {
+  const auto photons = photon_sets::make_set(SetKind::Random, 100, 3);
+  for (const Variant& v : kVariants) {
+    const PhotonMap map(photons, {v.kind, v.leaf_size});
+    Neighbors nb;
+    for (const float bad : {std::nanf(""), kInf, -kInf}) {
+      map.gather(Vec3(0.1f, bad, 0.2f), Vec3(0.0f), {5, kInf, false, true}, nb);
+      EXPECT_TRUE(nb.empty()) << variant_name(v);
+      EXPECT_EQ(nb.k(), 5);
+    }
+  }
+}
+
 TEST(Knn, ZeroNormalCullsNothing) {
   const auto photons = photon_sets::make_set(SetKind::Random, 500, 3);
   const PhotonMap map(photons, {PhotonTreeKind::Balanced, 8});
