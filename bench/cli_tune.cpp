@@ -91,17 +91,38 @@ int run(const TuneFlags& f) {
                      " cannot be built on " + spec.name + " at its default knobs: " + why);
   }
 
-  std::printf("tune: %s on %s (%u primitives), %dx%d, %d thread(s), median of %d\n", f.accel.c_str(),
-              spec.name.c_str(), scene.geometry.bounded_count(), o.measure.width, o.measure.height, f.threads,
-              f.repetitions);
+  std::printf("tune: %s on %s (%u primitives), %dx%d, %d thread(s); search: median of %d per point\n",
+              f.accel.c_str(), spec.name.c_str(), scene.geometry.bounded_count(), o.measure.width, o.measure.height,
+              f.threads, f.repetitions);
   const TuneResult r = tune(scene, f.accel, o);
   const TunePoint& best = r.points[r.best];
-  std::size_t coarse = 0;
-  for (const auto& p : r.points) coarse += p.round == 0;
-  std::printf("evaluated %zu points (%zu coarse, %zu refined); naive %.3f ms\n", r.points.size(), coarse,
-              r.points.size() - coarse, r.naive.render_ms);
-  std::printf("best: %s: %.3f ms, %.1fx naive\n", knobs_text(best).c_str(), best.m.render_ms->median,
-              r.best_speedup());
+  std::size_t coarse = 0, valid = 0;
+  for (const auto& p : r.points) coarse += p.round == 0, valid += p.m.status == RowStatus::Ok;
+  std::printf("evaluated %zu points (%zu coarse, %zu refined, %zu valid)\n", r.points.size(), coarse,
+              r.points.size() - coarse, valid);
+  std::printf("confirmed: the best %zu of the search and naive, %d interleaved rounds; median [95%% interval], "
+              "and the ratio to the fastest paired by round:\n",
+              r.candidates.size(), r.confirm_rounds);
+  for (std::size_t i : r.candidates) {
+    const auto& p = r.points[i];
+    const Confirmation& c = *p.confirmed;
+    std::printf("  %-30s %9.3f ms [%.3f, %.3f]  x%.3f [%.3f, %.3f]%s\n", knobs_text(p).c_str(), c.render_ms.median,
+                c.render_ms_ci.lo, c.render_ms_ci.hi, c.ratio, c.ratio_ci.lo, c.ratio_ci.hi,
+                i == r.best ? "  fastest" : "");
+  }
+  const Confirmation& bc = *best.confirmed;
+  if (r.separated) {
+    std::printf("winner: %s: %.3f ms [%.3f, %.3f], %.1fx naive [%.1f, %.1f] (every other candidate is slower at 95%%)\n",
+                knobs_text(best).c_str(), bc.render_ms.median, bc.render_ms_ci.lo, bc.render_ms_ci.hi, r.best_speedup,
+                r.best_speedup_ci.lo, r.best_speedup_ci.hi);
+  } else {
+    std::string names;
+    for (std::size_t i : r.tie) names += (names.empty() ? "" : ", ") + knobs_text(r.points[i]);
+    std::printf("tie: %zu candidates cannot be told apart at 95%%: %s\n", r.tie.size(), names.c_str());
+    std::printf("      the fastest median: %s: %.3f ms [%.3f, %.3f], %.1fx naive [%.1f, %.1f]\n",
+                knobs_text(best).c_str(), bc.render_ms.median, bc.render_ms_ci.lo, bc.render_ms_ci.hi,
+                r.best_speedup, r.best_speedup_ci.lo, r.best_speedup_ci.hi);
+  }
   std::printf("      every knob: %s\n", best.m.params.dump().c_str());
   int dlo = 1 << 30, dhi = -1, llo = 1 << 30, lhi = -1;
   for (std::size_t i : r.flat) {
@@ -109,17 +130,10 @@ int run(const TuneFlags& f) {
     dlo = std::min(dlo, p.max_depth), dhi = std::max(dhi, p.max_depth);
     llo = std::min(llo, p.max_leaf_size), lhi = std::max(lhi, p.max_leaf_size);
   }
-  std::printf("within %.0f%% of the best: %zu of %zu valid points", 100.0 * o.flat_tolerance, r.flat.size(),
-              std::size_t(std::count_if(r.points.begin(), r.points.end(),
-                                        [](const TunePoint& p) { return p.m.status == RowStatus::Ok; })));
+  std::printf("flat region (not shown slower than the fastest by more than %.0f%%): %zu of %zu confirmed points",
+              100.0 * o.flat_tolerance, r.flat.size(), r.candidates.size());
   if (best.max_depth >= 0) std::printf(", max_depth %s", range_text(dlo, dhi).c_str());
   std::printf(", max_leaf_size %s\n", range_text(llo, lhi).c_str());
-  for (std::size_t i : r.flat) {
-    const auto& p = r.points[i];
-    const double ms = p.m.render_ms->median;
-    std::printf("  %-30s %9.3f ms  %+5.1f%%  %6.1fx naive\n", knobs_text(p).c_str(), ms,
-                100.0 * (ms / best.m.render_ms->median - 1.0), r.naive.render_ms / ms);
-  }
   if (!f.json_out.empty()) {
     nlohmann::json j = to_json(r);
     j["scene"] = to_json(spec);
@@ -135,8 +149,9 @@ void add_tune_command(CLI::App& app, int& exit_code) {
   auto flags = std::make_shared<TuneFlags>();
   CLI::App* cmd = app.add_subcommand(
       "tune",
-      "Find a structure's best max_depth x max_leaf_size on a scene (coarse grid, then refinement); with "
-      "--max-error or --max-time, the accuracy knobs that meet the budget (docs/accuracy.md)");
+      "Find a structure's best max_depth x max_leaf_size on a scene (coarse grid, refinement, then the best "
+      "candidates timed again, interleaved, to confirm the winner or report a tie); with --max-error or "
+      "--max-time, the accuracy knobs that meet the budget (docs/accuracy.md)");
   cmd->add_option("scene", flags->scene, "Generator name, generator:count, or scene file (.json, .nff)")
       ->required();
   cmd->add_option("--accel", flags->accel, "Structure to tune")->capture_default_str();

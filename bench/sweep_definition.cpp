@@ -257,7 +257,7 @@ SweepDefinition parse_sweep_definition(const json& j) {
   if (!j.is_object()) fail("", "a sweep definition must be a JSON object");
   require_keys(j, "", {"name", "description", "scenes", "structures", "knobs", "resolution", "threads",
                        "repetitions", "warmup", "max_memory_bytes", "integrator", "mode", "validate_resolution",
-                       "integrator_knobs", "fronts"});
+                       "integrator_knobs", "fronts", "noise_threshold", "remeasure"});
   SweepDefinition d;
   if (j.contains("name")) {
     d.name = get_string(j["name"], "/name");
@@ -320,6 +320,13 @@ SweepDefinition parse_sweep_definition(const json& j) {
   if (j.contains("threads")) d.threads = int(get_integer(j["threads"], "/threads", 0, 4096));
   if (j.contains("repetitions")) d.repetitions = int(get_integer(j["repetitions"], "/repetitions", 1, 10000));
   if (j.contains("warmup")) d.warmup = int(get_integer(j["warmup"], "/warmup", 0, 10000));
+  if (j.contains("noise_threshold")) {
+    const json& t = j["noise_threshold"];
+    if (!t.is_number() || !(t.get<double>() >= 0.0 && t.get<double>() <= 10.0))
+      fail("/noise_threshold", "must be a number in [0, 10] (a fraction of the value), got " + brief(t));
+    d.noise_threshold = t.get<double>();
+  }
+  if (j.contains("remeasure")) d.remeasure = int(get_integer(j["remeasure"], "/remeasure", 0, 100));
   if (j.contains("max_memory_bytes"))
     d.max_memory_bytes = std::uint64_t(
         get_integer(j["max_memory_bytes"], "/max_memory_bytes", 0, std::numeric_limits<long long>::max()));
@@ -446,6 +453,8 @@ json to_json(const SweepDefinition& d) {
     j["integrator_knobs"] = groups;
   }
   if (!d.fronts.is_null()) j["fronts"] = d.fronts;
+  if (d.noise_threshold != SweepDefinition{}.noise_threshold) j["noise_threshold"] = d.noise_threshold;
+  if (d.remeasure != SweepDefinition{}.remeasure) j["remeasure"] = d.remeasure;
   return j;
 }
 

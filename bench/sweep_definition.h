@@ -76,6 +76,11 @@ struct SweepDefinition {
   int repetitions = 5;                  ///< Timed renders per configuration (the median is reported).
   int warmup = 1;                       ///< Untimed renders before the timed ones.
   std::uint64_t max_memory_bytes = 0;   ///< Build memory budget, bytes; 0 = 25% of RAM.
+  /// A row is noisy when its 95% interval (of the speedup; naive's and rows without a speedup:
+  /// of the median time) is wider than this fraction of its value (0.10: wider than +-5%).
+  double noise_threshold = 0.10;
+  /// Passes of `repetitions` more interleaved rounds (with naive) that noisy rows get, at most.
+  int remeasure = 2;
 };
 
 /// One measured unit: a structure with exact requested knobs on one scene.

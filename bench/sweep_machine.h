@@ -26,8 +26,8 @@ nlohmann::json mixed_hardware(const nlohmann::json& machines);
 
 /// How every speedup in a results file is formed; written into each results file.
 inline constexpr const char* kSpeedupBasis =
-    "speedup = naive_render_ms / render_ms.median, both medians measured in the same shard on the "
-    "same "
-    "node (a shard resumed on another node measures naive again there); never a ratio across nodes";
+    "speedup = naive_render_ms / render_ms.median, both medians over the same interleaved rounds of "
+    "one run on one node (naive is timed again in every run, resumed or not); never a ratio across "
+    "runs or nodes";
 
 }  // namespace bench

@@ -3,7 +3,10 @@
 #include "integrators.h"
 
 #include "tracer/image.h"
+#include "tracer/parallel.h"
 #include "tracer/render.h"
+
+#include <time.h>
 
 #include <chrono>
 #include <new>
@@ -16,6 +19,12 @@ using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+double cpu_seconds(clockid_t clock) {
+  timespec t{};
+  clock_gettime(clock, &t);
+  return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
 }
 
 /// One render of `scene` with the sweep's integrator.
@@ -58,60 +67,37 @@ double Measurement::rays_per_s() const {
   return double(rays.total()) / (render_ms->median * 1e-3);
 }
 
-Measurement measure(const tracer::Scene& scene, std::span<const accel::Aabb> boxes,
-                    const std::string& structure, const nlohmann::json& params,
-                    const MeasureOptions& options, const std::optional<Reference>& reference) {
-  Measurement m;
-  accel::AnyAccel built;
+Prepared prepare(const tracer::Scene& scene, std::span<const accel::Aabb> boxes, const std::string& structure,
+                 const nlohmann::json& params, const MeasureOptions& options, const std::optional<Reference>& reference) {
+  Prepared p;
+  Measurement& m = p.m;
   const auto t_build = Clock::now();
   try {
-    built = accel::make_accel(structure, params, boxes, options.limits);
+    p.built = accel::make_accel(structure, params, boxes, options.limits);
   } catch (const std::bad_alloc&) {
     m.spent_build_s = seconds_since(t_build);
     m.status = RowStatus::Failed;
     m.reason = structure + ": out of memory while building";
-    return m;
+    return p;
   } catch (const std::exception& e) {
     m.spent_build_s = seconds_since(t_build);
     m.status = RowStatus::Failed;
     m.reason = e.what();
-    return m;
+    return p;
   }
   m.spent_build_s = seconds_since(t_build);
   m.build_ms = m.spent_build_s * 1e3;
   m.built = true;
-  m.params = accel::params_of(built);
-  m.built_name = accel::name_of(built);
-  m.build_stats = accel::stats_of(built);
-
-  // One timed call of the renderer; the hash of every image must agree with the first.
-  std::optional<tracer::Image> image;  // kept for the inspector
-  auto render_once = [&](bool counting) -> std::optional<double> {
-    const auto t0 = Clock::now();
-    tracer::RenderResult r = render_with(scene, built, options, options.width, options.height, counting);
-    const double s = seconds_since(t0);
-    m.spent_trace_s += s;
-    const std::uint64_t h = r.image.content_hash();
-    if (counting) {
-      m.image_hash = h;
-      m.traversal = r.traversal;
-      m.rays = r.rays;
-      if (options.inspect) image = std::move(r.image);
-    } else if (h != m.image_hash) {
-      m.status = RowStatus::Error;
-      m.reason = "image hash " + tracer::hash_hex(h) + " of a timed render differs from its counting pass's " +
-                 tracer::hash_hex(m.image_hash) + " (nondeterministic render)";
-      return std::nullopt;
-    }
-    return s * 1e3;
-  };
+  m.params = accel::params_of(p.built);
+  m.built_name = accel::name_of(p.built);
+  m.build_stats = accel::stats_of(p.built);
 
   try {
     if (options.validate_width > 0) {
       // The check against naive at the validation resolution, untimed.
       const auto t0 = Clock::now();
       const tracer::RenderResult r =
-          render_with(scene, built, options, options.validate_width, options.validate_height, false);
+          render_with(scene, p.built, options, options.validate_width, options.validate_height, false);
       m.spent_trace_s += seconds_since(t0);
       m.validation = Validation{options.validate_width, options.validate_height, r.image.content_hash(), r.rays};
       const std::string at =
@@ -121,36 +107,101 @@ Measurement measure(const tracer::Scene& scene, std::span<const accel::Aabb> box
         if (std::string why = mismatch(m.validation->image_hash, m.validation->rays, *reference, at); !why.empty()) {
           m.status = RowStatus::Error;
           m.reason = why;
-          return m;
+          return p;
         }
       }
     }
-    render_once(true);
+    // The counting pass: traversal counters, ray counts and the hash every timed image must match.
+    const auto t0 = Clock::now();
+    tracer::RenderResult r = render_with(scene, p.built, options, options.width, options.height, true);
+    m.spent_trace_s += seconds_since(t0);
+    m.image_hash = r.image.content_hash();
+    m.traversal = r.traversal;
+    m.rays = r.rays;
+    if (options.inspect) p.image = std::move(r.image);
     if (reference && options.validate_width <= 0) {
       if (std::string why = mismatch(m.image_hash, m.rays, *reference, ""); !why.empty()) {
         m.status = RowStatus::Error;
         m.reason = why;
-        return m;
+        return p;
       }
     }
-    for (int i = 0; i < options.warmup; ++i)
-      if (!render_once(false)) return m;
-    std::vector<double> samples;
-    for (int i = 0; i < options.repetitions; ++i) {
-      const auto ms = render_once(false);
-      if (!ms) return m;
-      samples.push_back(*ms);
-    }
-    m.render_ms = summarize(samples);
-    if (options.inspect) options.inspect(scene, built, options, *image, m);
   } catch (const std::bad_alloc&) {
     m.status = RowStatus::Failed;
     m.reason = structure + ": out of memory while rendering";
+    return p;
+  } catch (const std::exception& e) {
+    m.status = RowStatus::Failed;
+    m.reason = std::string("render: ") + e.what();
+    return p;
+  }
+  for (int i = 0; i < options.warmup; ++i)
+    if (!time_render(scene, p, options)) break;
+  return p;
+}
+
+std::optional<Sample> time_render(const tracer::Scene& scene, Prepared& p, const MeasureOptions& options) {
+  Measurement& m = p.m;
+  try {
+    // One render thread is the calling thread (tracer::parallel_items' worker 0): its own CPU
+    // clock. With more, the process's clock sums every thread's (nothing else runs meanwhile).
+    const clockid_t cpu_clock = tracer::resolve_threads(options.threads) == 1 ? CLOCK_THREAD_CPUTIME_ID
+                                                                               : CLOCK_PROCESS_CPUTIME_ID;
+    const double cpu0 = cpu_seconds(cpu_clock);
+    const auto t0 = Clock::now();
+    const tracer::RenderResult r = render_with(scene, p.built, options, options.width, options.height, false);
+    const double wall = seconds_since(t0);
+    const double cpu = cpu_seconds(cpu_clock) - cpu0;
+    m.spent_trace_s += wall;
+    const std::uint64_t h = r.image.content_hash();
+    if (h != m.image_hash) {
+      m.status = RowStatus::Error;
+      m.reason = "image hash " + tracer::hash_hex(h) + " of a timed render differs from its counting pass's " +
+                 tracer::hash_hex(m.image_hash) + " (nondeterministic render)";
+      return std::nullopt;
+    }
+    return Sample{wall * 1e3, cpu * 1e3};
+  } catch (const std::bad_alloc&) {
+    m.status = RowStatus::Failed;
+    m.reason = m.built_name + ": out of memory while rendering";
   } catch (const std::exception& e) {
     m.status = RowStatus::Failed;
     m.reason = std::string("render: ") + e.what();
   }
-  return m;
+  return std::nullopt;
+}
+
+void inspect(const tracer::Scene& scene, Prepared& p, const MeasureOptions& options) {
+  if (!options.inspect || !p.image) return;
+  try {
+    options.inspect(scene, p.built, options, *p.image, p.m);
+  } catch (const std::exception& e) {
+    p.m.status = RowStatus::Failed;
+    p.m.reason = std::string("inspect: ") + e.what();
+  }
+}
+
+void set_timings(Measurement& m, const std::vector<Sample>& samples) {
+  if (samples.empty()) return;
+  m.render_ms = summarize(wall_times(samples));
+  m.cpu_ms = summarize(cpu_times(samples));
+  m.render_ms_ci = median_interval(wall_times(samples));
+}
+
+Measurement measure(const tracer::Scene& scene, std::span<const accel::Aabb> boxes,
+                    const std::string& structure, const nlohmann::json& params,
+                    const MeasureOptions& options, const std::optional<Reference>& reference) {
+  Prepared p = prepare(scene, boxes, structure, params, options, reference);
+  if (p.m.status != RowStatus::Ok) return std::move(p.m);
+  std::vector<Sample> samples;
+  for (int i = 0; i < options.repetitions; ++i) {
+    const auto s = time_render(scene, p, options);
+    if (!s) return std::move(p.m);
+    samples.push_back(*s);
+  }
+  set_timings(p.m, samples);
+  inspect(scene, p, options);
+  return std::move(p.m);
 }
 
 }  // namespace bench

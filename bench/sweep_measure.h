@@ -3,9 +3,12 @@
 // pass that also yields the image hash, then warm-ups and timed renders.
 
 #include "sweep_definition.h"
+#include "bootstrap.h"
+#include "rounds.h"
 #include "sweep_stats.h"
 
 #include "accel/accel.h"
+#include "tracer/image.h"
 #include "tracer/image.h"
 #include "tracer/ray_counts.h"
 #include "tracer/scene.h"
@@ -82,7 +85,12 @@ struct Measurement {
   nlohmann::json params;                 ///< params_of: the exact knobs used (when built).
   std::string built_name;                ///< name_of: the structure actually built (auto picks one).
   accel::BuildStats build_stats;         ///< The structure's statistics (when built).
-  std::optional<TimingStats> render_ms;  ///< Timed renders, ms (only when ok).
+  std::optional<TimingStats> render_ms;  ///< Timed renders, wall clock, ms (only when ok).
+  std::optional<TimingStats> cpu_ms;     ///< The same renders' CPU time (all render threads), ms.
+  std::optional<Interval> render_ms_ci;  ///< 95% bootstrap interval of render_ms's median, ms.
+  std::optional<Interval> speedup_ci;    ///< 95% bootstrap interval of the speedup (paired rounds).
+  bool noisy = false;                    ///< The interval is wider than the sweep's noise threshold.
+  int remeasured = 0;                    ///< Extra passes of rounds it was given for being noisy.
   accel::TraversalCounters traversal;    ///< From the counting pass (not timed).
   tracer::RayCounts rays;                ///< Rays traced by one render.
   std::uint64_t image_hash = 0;          ///< Image hash of the counting pass and every render.
@@ -96,11 +104,40 @@ struct Measurement {
   double rays_per_s() const;
 };
 
+/// A configuration built, rendered once with counters (and checked against naive), warmed up:
+/// ready for timed renders.
+struct Prepared {
+  Measurement m;                       ///< Build and counting pass; m.status Ok means ready to time.
+  accel::AnyAccel built;               ///< The structure (when m.built).
+  std::optional<tracer::Image> image;  ///< The counting pass's image, kept for options.inspect.
+};
+
+/// Builds `structure` with `params` on `scene`, makes the counting pass, checks it against
+/// `reference` (naive's; at the validation resolution when one is set) and makes the warm-up
+/// renders. Never throws for a bad knob or a failed build: those become a Failed measurement;
+/// a mismatch with naive is an Error.
+Prepared prepare(const tracer::Scene& scene, std::span<const accel::Aabb> boxes, const std::string& structure,
+                 const nlohmann::json& params, const MeasureOptions& options, const std::optional<Reference>& reference);
+
+/// One timed render of a prepared configuration: wall time and the CPU time of its threads
+/// (CLOCK_THREAD_CPUTIME_ID with one thread, the process's CPU clock with more). Returns nullopt,
+/// and makes p.m an Error, when the image differs from the counting pass's; nullopt and Failed
+/// when the render throws.
+std::optional<Sample> time_render(const tracer::Scene& scene, Prepared& p, const MeasureOptions& options);
+
+/// Runs options.inspect on a timed configuration's counting image; an exception from it makes
+/// p.m Failed.
+void inspect(const tracer::Scene& scene, Prepared& p, const MeasureOptions& options);
+
+/// Sets the timings of `m` from its samples: render_ms, cpu_ms, render_ms_ci.
+void set_timings(Measurement& m, const std::vector<Sample>& samples);
+
 /// Builds and measures `structure` with `params` on `scene`. Never throws for a bad knob or a
 /// failed build: those become a Failed measurement. With a reference, an image or ray counts that
 /// differ from naive's are an Error and are not timed. With a validation resolution in `options`,
 /// that comparison is made by a render at that resolution (the reference must be naive's there)
-/// and the timed renders are then made at the timed resolution.
+/// and the timed renders are then made at the timed resolution. The repetitions are timed one
+/// after the other (prepare, then time_render): sweeps interleave configurations instead.
 Measurement measure(const tracer::Scene& scene, std::span<const accel::Aabb> boxes,
                     const std::string& structure, const nlohmann::json& params,
                     const MeasureOptions& options, const std::optional<Reference>& reference);

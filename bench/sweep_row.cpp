@@ -57,24 +57,30 @@ nlohmann::json make_row(const SweepConfig& config, const SceneSpec& scene, std::
     if (reference) {
       v["naive_image_hash"] = tracer::hash_hex(reference->image_hash);
       v["naive_rays"] = reference->rays;
-      v["naive_render_ms"] = reference->render_ms;
+      if (reference->render_ms > 0.0) v["naive_render_ms"] = reference->render_ms;  // timed (ok rows)
     }
     row["validated_at"] = v;
   }
   if (reference && !apart) {
     row["naive_image_hash"] = tracer::hash_hex(reference->image_hash);
-    row["naive_render_ms"] = reference->render_ms;
+    if (reference->render_ms > 0.0) row["naive_render_ms"] = reference->render_ms;  // timed (ok rows)
   }
   // Only a validated configuration carries speeds.
   if (m.status == RowStatus::Ok && m.render_ms) {
     row["render_ms"] = *m.render_ms;
+    if (m.cpu_ms) row["cpu_ms"] = *m.cpu_ms;
+    if (m.render_ms_ci) row["render_ms_ci"] = {m.render_ms_ci->lo, m.render_ms_ci->hi};
+    row["noisy"] = m.noisy;
+    row["remeasured"] = m.remeasured;
     row["rays_per_s"] = m.rays_per_s();
-    if (apart)
+    if (apart) {
       row["no_speedup_reason"] = "naive was timed only at the validation resolution " +
                                  std::to_string(options.validate_width) + "x" +
                                  std::to_string(options.validate_height) + ", not at the timed resolution";
-    else if (reference && m.render_ms->median > 0.0)
+    } else if (reference && reference->render_ms > 0.0 && m.render_ms->median > 0.0) {
       row["speedup"] = reference->render_ms / m.render_ms->median;
+      if (m.speedup_ci) row["speedup_ci"] = {m.speedup_ci->lo, m.speedup_ci->hi};
+    }
   }
   for (const auto& [key, value] : m.extra.items()) row[key] = value;
   return row;

@@ -13,7 +13,9 @@
 namespace bench {
 
 /// The row of a measured configuration. Speedup and naive's figures come from `reference`
-/// (naive on the same scene in the same run); they are absent when it is. With a validation
+/// (naive on the same scene, timed in the same interleaved rounds); they are absent when it is,
+/// and naive's time is absent while it is 0 (rows that were never timed). An ok row also carries
+/// cpu_ms, render_ms_ci, speedup_ci, noisy and remeasured. With a validation
 /// resolution in `options`, naive's figures go into "validated_at" and the row has no speedup
 /// but a "no_speedup_reason".
 nlohmann::json make_row(const SweepConfig& config, const SceneSpec& scene, std::uint64_t primitives,

@@ -9,11 +9,13 @@
 #include "sweep_row.h"
 #include "sweep_scene.h"
 
-#include <charconv>
+#include "accel/accel.h"
+
 #include <chrono>
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
+#include <functional>
 #include <map>
 #include <optional>
 #include <set>
@@ -32,25 +34,6 @@ std::string clock_text(double seconds) {
   return buf;
 }
 
-/// Naive's figures recorded in an earlier row (resume), when that row is usable as a reference.
-std::optional<Reference> reference_from_row(const json& row) {
-  if (row.value("status", "") != "ok" || !row.contains("render_ms") || !row.contains("image_hash") ||
-      !row["image_hash"].is_string() || !row["render_ms"].is_object() || !row["render_ms"].contains("median") ||
-      !row["render_ms"]["median"].is_number())
-    return std::nullopt;
-  Reference r;
-  const std::string& hash = row["image_hash"].get_ref<const std::string&>();
-  const auto [end, ec] = std::from_chars(hash.data(), hash.data() + hash.size(), r.image_hash, 16);
-  if (hash.size() != 16 || ec != std::errc() || end != hash.data() + hash.size()) return std::nullopt;
-  r.render_ms = row["render_ms"]["median"].get<double>();
-  try {
-    if (row.contains("rays")) r.rays = row["rays"].get<tracer::RayCounts>();
-  } catch (const std::exception&) {
-    return std::nullopt;  // unreadable counts: measure naive again
-  }
-  return r;
-}
-
 /// The test hook: ACCELBENCH_SWEEP_KILL_AFTER_ROWS=N sends this process a signal after N rows,
 /// SIGKILL or, with ACCELBENCH_SWEEP_KILL_SIGNAL=TERM, SIGTERM.
 std::size_t kill_after_rows() {
@@ -61,6 +44,118 @@ int kill_signal() {
   const char* v = std::getenv("ACCELBENCH_SWEEP_KILL_SIGNAL");
   return v && std::string(v) == "TERM" ? SIGTERM : SIGKILL;
 }
+
+/// A configuration of a batch: its row (nullptr for naive when this shard does not own naive's
+/// row, or wrote it with an earlier batch), and what prepare() made of it.
+struct Contender {
+  const SweepConfig* row = nullptr;  ///< The row to write, or nullptr.
+  bool naive = false;                ///< Naive, the reference: contender 0 of every batch.
+  Prepared p;                        ///< Built, checked, warmed up; then timed.
+};
+
+using Emit = std::function<void(json, const SweepConfig&, const std::string&)>;
+using Describe = std::function<std::string(const Measurement&, const std::optional<Reference>&)>;
+
+/// Times a batch (contender 0 naive) in interleaved rounds, gives noisy rows more rounds, and
+/// writes the rows. Interrupted before its first `repetitions` rounds are complete, it writes
+/// only the rows that failed meanwhile: the others are measured again by --resume.
+struct TimeBatch {
+  const tracer::Scene& scene;
+  const SceneSpec& spec;
+  std::uint64_t primitives;
+  const MeasureOptions& nmo;  ///< Naive's options (the validation resolution, when set).
+  const MeasureOptions& cmo;  ///< Every other contender's.
+  const SweepDefinition& definition;
+  RunSummary& summary;
+  Emit emit;
+  Describe describe;
+  bool progress;
+
+  void operator()(std::vector<Contender>& batch) const {
+    Rounds rounds(batch.size());
+    const auto ok = [&](std::size_t i) { return batch[i].p.m.status == RowStatus::Ok; };
+    const auto time = [&](std::size_t i) {
+      return time_render(scene, batch[i].p, batch[i].naive ? nmo : cmo);
+    };
+    const bool apart = definition.validates_apart();
+    // Runs `count` rounds over naive and `who`; false when stopped before they were complete.
+    const auto run_rounds = [&](const std::vector<std::size_t>& who, int count) {
+      for (int r = 0; r < count; ++r) {
+        std::vector<std::size_t> active;
+        for (std::size_t i : who)
+          if (ok(i)) active.push_back(i);
+        if (!ok(0) || !rounds.run(active, time, [] { return stop_requested(); })) return false;
+      }
+      return true;
+    };
+    std::vector<std::size_t> everyone(batch.size());
+    for (std::size_t i = 0; i < batch.size(); ++i) everyone[i] = i;
+    if (progress)
+      std::fprintf(stderr, "sweep: %s: timing %zu configurations and naive in %d interleaved rounds\n",
+                   spec.name.c_str(), batch.size() - 1, definition.repetitions);
+    const bool complete = run_rounds(everyone, definition.repetitions);
+
+    // Statistics of every contender; the speedup's interval pairs its samples with naive's.
+    const auto evaluate = [&]() {
+      for (std::size_t i = 0; i < batch.size(); ++i) {
+        Measurement& m = batch[i].p.m;
+        if (m.status != RowStatus::Ok) continue;
+        set_timings(m, rounds.samples(i));
+        double width = m.render_ms_ci->relative_width(m.render_ms->median);
+        if (i == 0) {
+          m.speedup_ci = Interval{1.0, 1.0};
+        } else if (!apart) {
+          const auto [naive_ms, own_ms] = rounds.paired_wall(0, i);
+          m.speedup_ci = ratio_of_medians_interval(naive_ms, own_ms);
+          width = m.speedup_ci->relative_width(median_of(naive_ms) / median_of(own_ms));
+        }
+        m.noisy = width > definition.noise_threshold;
+      }
+    };
+    if (complete) {
+      evaluate();
+      // Noisy rows get more rounds (with naive), up to the definition's limit.
+      for (int pass = 1; pass <= definition.remeasure && !stop_requested(); ++pass) {
+        std::vector<std::size_t> again{0};
+        for (std::size_t i = 1; i < batch.size(); ++i)
+          if (ok(i) && batch[i].p.m.noisy) again.push_back(i);
+        if (again.size() == 1 && !(batch[0].row && batch[0].p.m.noisy)) break;
+        if (progress)
+          std::fprintf(stderr, "sweep: %s: %zu noisy row(s): %d more rounds (pass %d of at most %d)\n",
+                       spec.name.c_str(), again.size() - 1 + (batch[0].p.m.noisy ? 1 : 0), definition.repetitions,
+                       pass, definition.remeasure);
+        const bool whole = run_rounds(again, definition.repetitions);
+        for (std::size_t i : again) batch[i].p.m.remeasured++;
+        evaluate();
+        if (!whole) break;
+      }
+    }
+    for (Contender& c : batch) {
+      summary.trace_s += c.p.m.spent_trace_s;
+      c.p.m.spent_trace_s = 0.0;  // naive stays for the next batch: count its time once
+    }
+    // Rows: naive's first, then the others in configuration order.
+    const Measurement& naive = batch[0].p.m;
+    for (std::size_t i = 0; i < batch.size(); ++i) {
+      Contender& c = batch[i];
+      if (!c.row) continue;
+      if (c.p.m.status == RowStatus::Ok && !complete) continue;  // timed in part: measured again on resume
+      const MeasureOptions& o = c.naive ? nmo : cmo;
+      if (c.p.m.status == RowStatus::Ok && o.inspect && c.p.image) inspect(scene, c.p, o);
+      std::optional<Reference> reference;
+      if (naive.status == RowStatus::Ok && naive.render_ms) {
+        // Naive's median over the rounds this row was timed in (every round: naive is in all).
+        const auto paired = rounds.paired_wall(0, i);
+        reference = Reference{naive.image_hash, paired.first.empty() ? 0.0 : median_of(paired.first), naive.rays};
+      } else if (c.p.m.status == RowStatus::Ok) {
+        c.p.m.status = RowStatus::Failed;
+        c.p.m.reason = "naive, the reference, failed while being timed: " + naive.reason;
+      }
+      emit(make_row(*c.row, spec, primitives, c.naive ? nmo : cmo, c.p.m, reference), *c.row,
+           describe(c.p.m, reference));
+    }
+  }
+};
 
 }  // namespace
 
@@ -97,11 +192,6 @@ RunSummary run_sweep(const SweepDefinition& definition, const RunOptions& option
     writer.append({{"kind", kResumeKind}, {"machine", here}});
   }
   const std::map<std::string, json>& done = state.done;
-  // The node that measured a row: its own record, else (rows of older files) the header's.
-  auto measured_on = [&](const json& row) {
-    return row.contains("node") && row["node"].is_string() ? row["node"].get<std::string>()
-                                                           : node_name(machine);
-  };
 
   std::vector<SweepConfig> pending;
   for (const auto& c : mine)
@@ -110,11 +200,6 @@ RunSummary run_sweep(const SweepDefinition& definition, const RunOptions& option
   if (options.progress && summary.already_done)
     std::fprintf(stderr, "sweep: resuming: %zu of %zu configurations already done\n", summary.already_done,
                  mine.size());
-  if (!fresh && node != node_name(machine))
-    std::fprintf(
-        stderr,
-        "sweep: resuming on node %s, started on %s: naive is measured again here for speedups\n",
-        node.c_str(), node_name(machine).c_str());
 
   MeasureOptions mo;
   mo.width = definition.width;
@@ -156,10 +241,15 @@ RunSummary run_sweep(const SweepDefinition& definition, const RunOptions& option
     }
     if (kill_after && summary.measured == kill_after) std::raise(kill_signal());
   };
-  auto describe = [](const Measurement& m) {
-    if (m.status != RowStatus::Ok) return std::string(status_name(m.status)) + ": " + m.reason;
-    char buf[160];
-    std::snprintf(buf, sizeof buf, "ok, render %.2f ms, build %.2f ms", m.render_ms->median, m.build_ms);
+  auto describe = [](const Measurement& m, const std::optional<Reference>& reference) {
+    if (m.status != RowStatus::Ok || !m.render_ms) return std::string(status_name(m.status)) + ": " + m.reason;
+    char buf[256];
+    int n = std::snprintf(buf, sizeof buf, "ok, render %.2f ms [%.2f, %.2f], build %.2f ms", m.render_ms->median,
+                          m.render_ms_ci->lo, m.render_ms_ci->hi, m.build_ms);
+    if (reference && m.speedup_ci)
+      n += std::snprintf(buf + n, sizeof buf - std::size_t(n), ", %.2fx naive [%.2f, %.2f]",
+                         reference->render_ms / m.render_ms->median, m.speedup_ci->lo, m.speedup_ci->hi);
+    if (m.noisy) std::snprintf(buf + n, sizeof buf - std::size_t(n), ", noisy");
     return std::string(buf);
   };
 
@@ -185,69 +275,71 @@ RunSummary run_sweep(const SweepDefinition& definition, const RunOptions& option
     const std::vector<accel::Aabb> boxes = scene->geometry.primitive_bounds();
     const std::uint64_t primitives = boxes.size();
 
-    // The references: naive on this scene with each integrator setting, from an earlier row
-    // measured on this node, this shard's naive row, or a measurement made only for validation
-    // and speedups. A speedup is never a ratio of times from two nodes: resumed on another node,
-    // naive is measured again.
-    struct NaiveReference {
-      std::optional<Reference> reference;
-      std::string why_not;  // when there is none
-    };
-    std::map<std::string, NaiveReference> references;  // by integrator params
-    std::set<std::size_t> emitted;                      // naive rows written while measuring it
-    auto reference_for = [&](const SweepConfig& c) -> const NaiveReference& {
-      const std::string ip = c.integrator_params.dump();
-      if (const auto it = references.find(ip); it != references.end()) return it->second;
-      NaiveReference& r = references[ip];
-      const std::string naive_key = config_key(spec.name, "naive", json::object(), c.integrator_params);
-      if (const auto it = done.find(naive_key); it != done.end() && measured_on(it->second) == node)
-        r.reference = reference_from_row(it->second);
-      if (r.reference) return r;
-      if (options.progress)
-        std::fprintf(stderr, "sweep: %s: measuring naive, the reference%s\n", spec.name.c_str(),
-                     c.integrator_params.empty() ? "" : (" for " + c.integrator_params.dump()).c_str());
-      // The sweep's own naive row for this setting, if it is pending: this measurement is its
-      // row (with the inspector's findings when naive is timed at the timed resolution).
-      std::optional<std::size_t> row_index;
-      for (std::size_t i = begin; i < end; ++i)
-        if (pending[i].key == naive_key && !emitted.count(i)) row_index = i;
-      MeasureOptions nmo = naive_mo;
-      nmo.integrator_params = c.integrator_params;
-      nmo.inspect = row_index && !definition.validates_apart() ? mo.inspect : nullptr;
-      const Measurement naive = measure(*scene, boxes, "naive", json::object(), nmo, std::nullopt);
-      summary.build_s += naive.spent_build_s;
-      summary.trace_s += naive.spent_trace_s;
-      if (naive.status == RowStatus::Ok) r.reference = Reference{naive.image_hash, naive.render_ms->median, naive.rays};
-      else r.why_not = "no naive reference on this scene: " + naive.reason;
-      if (row_index) {
-        emit(make_row(pending[*row_index], spec, primitives, nmo, naive, r.reference), pending[*row_index],
-             describe(naive));
-        emitted.insert(*row_index);
-      }
-      return r;
-    };
-    for (std::size_t i = begin; i < end && !stop_requested(); ++i) {
-      if (emitted.count(i)) continue;
-      const SweepConfig& c = pending[i];
-      const NaiveReference& ref = reference_for(c);
-      if (emitted.count(i)) continue;  // c was naive itself, written just now
+    // One setting of the integrator at a time: naive and every pending configuration with that
+    // setting are prepared (built, checked against naive, warmed up), then timed together in
+    // interleaved rounds, naive included, so that drift reaches all of them alike.
+    std::vector<std::string> settings;                       // in order of first appearance
+    std::map<std::string, std::vector<std::size_t>> of_setting;  // setting -> indices into pending
+    for (std::size_t i = begin; i < end; ++i) {
+      const std::string ip = pending[i].integrator_params.dump();
+      if (!of_setting.count(ip)) settings.push_back(ip);
+      of_setting[ip].push_back(i);
+    }
+    for (const std::string& ip : settings) {
       if (stop_requested()) break;
-      MeasureOptions cmo = mo;
-      cmo.integrator_params = c.integrator_params;
-      if (!ref.reference) {
-        emit(make_failed_row(c, spec, cmo, ref.why_not), c, "failed: " + ref.why_not);
+      const std::vector<std::size_t>& members = of_setting[ip];
+      const json& integrator_params = pending[members.front()].integrator_params;
+      MeasureOptions nmo = naive_mo, cmo = mo;
+      nmo.integrator_params = cmo.integrator_params = integrator_params;
+      const std::string naive_key = config_key(spec.name, "naive", json::object(), integrator_params);
+      std::optional<std::size_t> naive_row;  // the sweep's own naive row, when it is pending
+      for (std::size_t i : members)
+        if (pending[i].key == naive_key) naive_row = i;
+      nmo.inspect = naive_row && !definition.validates_apart() ? mo.inspect : nullptr;
+
+      // Contender 0 is naive: the reference for validation, and timed in every round.
+      std::vector<Contender> batch;
+      batch.push_back({naive_row ? &pending[*naive_row] : nullptr, true,
+                       prepare(*scene, boxes, "naive", json::object(), nmo, std::nullopt)});
+      summary.build_s += batch[0].p.m.spent_build_s;
+      if (batch[0].p.m.status != RowStatus::Ok) {
+        summary.trace_s += batch[0].p.m.spent_trace_s;
+        const std::string why = "no naive reference on this scene: " + batch[0].p.m.reason;
+        if (naive_row) emit(make_row(pending[*naive_row], spec, primitives, nmo, batch[0].p.m, std::nullopt),
+                            pending[*naive_row], describe(batch[0].p.m, std::nullopt));
+        for (std::size_t i : members)
+          if (i != naive_row) emit(make_failed_row(pending[i], spec, cmo, why), pending[i], "failed: " + why);
         continue;
       }
-      const Measurement m = measure(*scene, boxes, c.structure, c.params, cmo, ref.reference);
-      summary.build_s += m.spent_build_s;
-      summary.trace_s += m.spent_trace_s;
-      std::string what = describe(m);
-      if (m.status == RowStatus::Ok && m.render_ms && !definition.validates_apart()) {
-        char buf[48];
-        std::snprintf(buf, sizeof buf, ", %.2fx naive", ref.reference->render_ms / m.render_ms->median);
-        what += buf;
+      const Reference reference{batch[0].p.m.image_hash, 0.0, batch[0].p.m.rays};
+      const TimeBatch time_batch{*scene, spec, primitives, nmo, cmo, definition, summary, emit, describe,
+                                 options.progress};
+      const std::uint64_t budget = accel::memory_budget_bytes(mo.limits);
+      std::uint64_t held = 0;
+      for (std::size_t i : members) {
+        if (i == naive_row) continue;
+        if (stop_requested()) break;
+        const SweepConfig& c = pending[i];
+        Prepared p = prepare(*scene, boxes, c.structure, c.params, cmo, reference);
+        summary.build_s += p.m.spent_build_s;
+        if (p.m.status != RowStatus::Ok) {
+          summary.trace_s += p.m.spent_trace_s;
+          emit(make_row(c, spec, primitives, cmo, p.m, reference), c, describe(p.m, reference));
+          continue;
+        }
+        // Every structure of a batch is held while the rounds run: their memory together stays
+        // within the build budget, else the batch is timed and let go before the next one starts.
+        const std::uint64_t bytes = p.m.build_stats.memory_bytes;
+        if (batch.size() > 1 && held + bytes > budget) {
+          time_batch(batch);
+          batch.resize(1);
+          batch[0].row = nullptr;  // naive's row, if any, went out with the first batch
+          held = 0;
+        }
+        batch.push_back({&c, false, std::move(p)});
+        held += bytes;
       }
-      emit(make_row(c, spec, primitives, cmo, m, ref.reference), c, what);
+      if (!stop_requested() && (batch.size() > 1 || batch[0].row)) time_batch(batch);
     }
     begin = end;
   }

@@ -5,7 +5,9 @@ Reads only the results JSON files named on the command line and writes, as PNG a
 
   paper_speedup   the analogue of the paper's Figures 2 and 3: render time per structure with the
                   speedup over naive on a second axis, for spheres8000 and five, with the paper's
-                  own speedups (3.3 octree, 3.8 kd-tree; D. Cohen, "A Better Ray Tracer", RPI) marked
+                  own speedups (3.3 octree, 3.8 kd-tree; D. Cohen, "A Better Ray Tracer", RPI) marked;
+                  whiskers are the rows' 95% intervals, and a second row of panels shows the
+                  machine-independent work per ray (nodes visited, primitives tested)
   heatmap_render_ms, heatmap_nodes_per_ray
                   render time and nodes visited per ray over max_depth x max_leaf_size, per structure
   scaling         render time against the number of spheres (log-log) with fitted slopes and the
@@ -130,26 +132,30 @@ def setting_text(row):
     threads = row.get("threads", 1)
     return (f"{row.get('width')}x{row.get('height')} pixels, "
             f"{'all cores' if threads == 0 else str(threads) + ' thread' + ('s' if threads != 1 else '')}, "
-            f"median of {row.get('repetitions')}")
+            + (f"median of {row.get('repetitions')} interleaved rounds (more for noisy rows)" if "remeasured" in row
+               else f"median of {row.get('repetitions')}"))
 
 
 def plot_paper_speedup(rows, out_dir):
     scenes = [s for s in PAPER_SCENES if best_per_variant(rows, s)]
     if not scenes:
         return False
-    fig, axes = plt.subplots(1, len(scenes), figsize=(7.0 * len(scenes), 5.6), squeeze=False)
-    fig.subplots_adjust(wspace=0.42, bottom=0.3, top=0.84)
+    fig, all_axes = plt.subplots(2, len(scenes), figsize=(7.0 * len(scenes), 9.6), squeeze=False,
+                                 gridspec_kw={"height_ratios": [5.6, 2.6]})
+    fig.subplots_adjust(wspace=0.42, hspace=0.75, bottom=0.17, top=0.9)
     handles = {}
-    for ax, scene in zip(axes[0], scenes):
+    for ax, work_ax, scene in zip(all_axes[0], all_axes[1], scenes):
         best = best_per_variant(rows, scene)
         names = list(best)
         x = np.arange(len(names))
         med = np.array([best[n]["render_ms"]["median"] for n in names])
-        lo = med - np.array([best[n]["render_ms"]["min"] for n in names])
-        hi = np.array([best[n]["render_ms"]["max"] for n in names]) - med
+        # Whiskers: the 95% interval of the median where the rows have one, else min to max.
+        lo = med - np.array([interval(best[n], "render_ms_ci", best[n]["render_ms"]["min"])[0] for n in names])
+        hi = np.array([interval(best[n], "render_ms_ci", best[n]["render_ms"]["max"])[1] for n in names]) - med
         bars = ax.bar(x, med, color=[COLORS.get(n, "grey") for n in names], yerr=[lo, hi], capsize=3,
                       error_kw={"elinewidth": 1, "ecolor": "dimgrey"})
-        handles["render time, median (bars; whiskers: min to max)"] = bars[0]
+        whiskers = "95% interval of the median" if "render_ms_ci" in best[names[0]] else "min to max"
+        handles[f"render time, median (bars; whiskers: {whiskers})"] = bars[0]
         ax.set_yscale("log")
         ax.set_ylim(med.min() / 4, (med + hi).max() * 3)
         ax.set_ylabel("render time (ms, log scale)")
@@ -160,11 +166,16 @@ def plot_paper_speedup(rows, out_dir):
 
         ax2 = ax.twinx()
         speed = np.array([best[n].get("speedup", np.nan) for n in names])
-        (dots,) = ax2.plot(x, speed, "D", color="black", markersize=7)
-        handles["speedup over naive, measured here (right axis)"] = dots
-        for xi, sp in zip(x, speed):
-            ax2.annotate(f"{sp:.3g}x", (xi, sp), textcoords="offset points", xytext=(0, 8), ha="center",
-                         fontsize=8, fontweight="bold")
+        s_lo = speed - np.array([interval(best[n], "speedup_ci", best[n].get("speedup", np.nan))[0] for n in names])
+        s_hi = np.array([interval(best[n], "speedup_ci", best[n].get("speedup", np.nan))[1] for n in names]) - speed
+        dots = ax2.errorbar(x, speed, yerr=[s_lo, s_hi], fmt="D", color="black", markersize=7, capsize=4,
+                            elinewidth=1.5)
+        handles["speedup over naive, measured here (right axis; whiskers: 95% interval, paired rounds)"] = dots
+        for xi, sp, n in zip(x, speed, names):
+            mark = " noisy" if best[n].get("noisy") else ""
+            ax2.annotate(f"{sp:.3g}x{mark}", (xi, sp), textcoords="offset points", xytext=(0, 8), ha="center",
+                         fontsize=8, fontweight="bold", color="red" if mark else "black")
+        plot_work_per_ray(work_ax, best, names, x)
         # The paper's speedups (spheres8000) at the structures they were measured for, the value
         # written once per structure.
         written = set()
@@ -193,10 +204,44 @@ def plot_paper_speedup(rows, out_dir):
     sample = next(iter(best_per_variant(rows, scenes[0]).values()))
     fig.legend(list(handles.values()), list(handles.keys()), loc="lower center", ncol=2, fontsize=9,
                frameon=False)
-    fig.suptitle("Render time per structure (best configuration of each) and speedup over naive\n"
+    fig.suptitle("Render time per structure (best configuration of each) and speedup over naive; below, the\n"
+                 "machine-independent work per ray behind the times (it does not drift with the machine's load)\n"
                  f"analogue of the paper's Figs. 2 and 3 ({CITATION}); {setting_text(sample)}", fontsize=11)
     save(fig, out_dir, "paper_speedup")
     return True
+
+
+def interval(row, key, fallback):
+    """A row's [lo, hi] interval `key`, or [fallback, fallback] in files written before intervals."""
+    value = row.get(key)
+    if isinstance(value, list) and len(value) == 2:
+        return value
+    return [fallback, fallback]
+
+
+def plot_work_per_ray(ax, best, names, x):
+    """Nodes visited and primitives tested per ray (the counting pass) for the same configurations."""
+    width = 0.38
+    nodes = np.array([best[n].get("traversal", {}).get("nodes_per_ray", np.nan) for n in names], dtype=float)
+    prims = np.array([best[n].get("traversal", {}).get("prims_per_ray", np.nan) for n in names], dtype=float)
+    ax.bar(x - width / 2, np.where(nodes > 0, nodes, np.nan), width, color="#4477aa", label="nodes visited per ray")
+    ax.bar(x + width / 2, np.where(prims > 0, prims, np.nan), width, color="#ee8866", label="primitives tested per ray")
+    for xi, v in zip(x - width / 2, nodes):
+        if v > 0:
+            ax.text(xi, v * 1.15, f"{v:.3g}", ha="center", va="bottom", fontsize=7)
+    for xi, v in zip(x + width / 2, prims):
+        if v > 0:
+            ax.text(xi, v * 1.15, f"{v:.3g}", ha="center", va="bottom", fontsize=7)
+    positive = [v for v in np.concatenate([nodes, prims]) if v > 0]
+    ax.set_yscale("log")
+    if positive:
+        ax.set_ylim(min(positive) / 3, max(positive) * 8)
+    ax.set_xticks(x)
+    ax.set_xticklabels(names, rotation=30, ha="right", fontsize=8)
+    ax.set_ylabel("work per ray (log scale)")
+    ax.set_title("work per ray (counting pass)", fontsize=9)
+    ax.legend(fontsize=7, loc="upper right", ncol=2)
+    ax.grid(True, axis="y", alpha=0.3)
 
 
 def knob_grid_rows(rows):
@@ -247,10 +292,19 @@ def plot_heatmaps(rows, out_dir):
                     failed.append((i, j, r.get("status", "?")))
             image = ax.imshow(np.ma.masked_invalid(m), origin="lower", cmap="viridis_r", norm=norm,
                               aspect="auto")
+            spread = {}  # (i, j) -> half-width of the 95% interval of the median, % of it
+            for r in vrows:
+                ci = r.get("render_ms_ci")
+                if name == "heatmap_render_ms" and r.get("status") == "ok" and isinstance(ci, list):
+                    i, j = depths.index(r["requested"]["max_depth"]), leaves.index(r["requested"]["max_leaf_size"])
+                    spread[(i, j)] = (100.0 * (ci[1] - ci[0]) / 2.0 / r["render_ms"]["median"], r.get("noisy", False))
             for i in range(len(depths)):
                 for j in range(len(leaves)):
                     if np.isfinite(m[i, j]):
-                        ax.text(j, i, f"{m[i, j]:.3g}", ha="center", va="center", fontsize=7,
+                        text = f"{m[i, j]:.3g}"
+                        if (i, j) in spread:
+                            text += f"\n±{spread[(i, j)][0]:.0f}%" + ("*" if spread[(i, j)][1] else "")
+                        ax.text(j, i, text, ha="center", va="center", fontsize=7 if "\n" not in text else 6,
                                 color="white" if norm and norm(m[i, j]) > 0.6 else "black")
             for i, j, status in failed:
                 ax.text(j, i, status, ha="center", va="center", fontsize=7, color="red")
@@ -272,8 +326,11 @@ def plot_heatmaps(rows, out_dir):
             bar.minorformatter = matplotlib.ticker.FormatStrFormatter("%.3g")
             bar.update_ticks()
         sample = grid[scene][variants[0]][0]
+        note = ("; under each time: half-width of its 95% interval (*: noisy)"
+                if name == "heatmap_render_ms" and any("render_ms_ci" in r for v in variants for r in grid[scene][v])
+                else "")
         fig.suptitle(f"{label[0].upper() + label[1:]} over max_depth x max_leaf_size on {scene}\n"
-                     f"{setting_text(sample)}; red box: the minimum; red text: failed or error", fontsize=11)
+                     f"{setting_text(sample)}; red box: the minimum; red text: failed or error{note}", fontsize=11)
         save(fig, out_dir, name)
     return True
 
@@ -303,14 +360,17 @@ def plot_scaling(rows, out_dir):
         series = {}
         for s in scenes:
             for v, r in best_per_variant(rows, s).items():
-                series.setdefault(v, []).append((r["primitives"], r["render_ms"]["median"]))
-        naive = dict(series.get("naive", []))
+                ci = interval(r, "render_ms_ci", r["render_ms"]["median"])
+                series.setdefault(v, []).append((r["primitives"], r["render_ms"]["median"], ci[0], ci[1]))
+        naive = {p[0]: p[1] for p in series.get("naive", [])}
         for v in sorted(series, key=order_key):
             pts = sorted(series[v])
             ns = np.array([p[0] for p in pts], dtype=float)
             ts = np.array([p[1] for p in pts])
+            t_lo = np.array([p[2] for p in pts])
+            t_hi = np.array([p[3] for p in pts])
             keep = ns >= 1
-            ns, ts = ns[keep], ts[keep]
+            ns, ts, t_lo, t_hi = ns[keep], ts[keep], t_lo[keep], t_hi[keep]
             if len(ns) == 0:
                 continue
             label = v
@@ -334,7 +394,8 @@ def plot_scaling(rows, out_dir):
                         label += f", beats naive from N~{be:.3g}"
                         ax.plot([be], [np.interp(math.log(be), np.log(ns), ts)], "o", mfc="none",
                                 color=COLORS.get(v, "grey"), markersize=11)
-            ax.plot(ns, ts, "-o", color=COLORS.get(v, "grey"), label=label, markersize=4)
+            ax.errorbar(ns, ts, yerr=[ts - t_lo, t_hi - ts], fmt="-o", color=COLORS.get(v, "grey"), label=label,
+                        markersize=4, capsize=2, elinewidth=0.8)
         ax.set_xscale("log")
         ax.set_yscale("log")
         ax.set_xlabel("spheres in the scene, N (log scale)")
@@ -342,7 +403,7 @@ def plot_scaling(rows, out_dir):
         ax.set_title(f"{family}")
         ax.grid(True, which="major", alpha=0.3)
         ax.legend(fontsize=7, loc="upper left", title="slope: d log t / d log N at large N; "
-                  "circle: break-even", title_fontsize=7)
+                  "circle: break-even; whiskers: 95% interval", title_fontsize=7)
     sample = ok_rows([r for r in rows if r.get("scene_family") in families])[0]
     fig.suptitle(f"Render time against scene size (best configuration per N; {setting_text(sample)})",
                  fontsize=11)
@@ -429,7 +490,7 @@ def plot_build_vs_trace(rows, out_dir):
 
 def speedup_table(rows):
     """Markdown: best measured speedup per structure beside the paper's."""
-    lines = ["| scene | structure | best configuration | render ms | speedup over naive | paper |",
+    lines = ["| scene | structure | best configuration | render ms | speedup over naive [95% interval] | paper |",
              "| --- | --- | --- | ---: | ---: | ---: |"]
     for scene in PAPER_SCENES:
         for v, r in best_per_variant(rows, scene).items():
@@ -441,8 +502,10 @@ def speedup_table(rows):
             elif scene == "five" and (v.startswith("octree") or v.startswith("kd-tree midpoint")):
                 paper = "< 1"
             knobs = ", ".join(f"{k}={val}" for k, val in sorted(r.get("requested", {}).items())) or "defaults"
-            lines.append(f"| {scene} | {v} | {knobs} | {r['render_ms']['median']:.3g} | "
-                         f"{r.get('speedup', float('nan')):.3g} | {paper} |")
+            speedup = f"{r.get('speedup', float('nan')):.3g}"
+            if isinstance(r.get("speedup_ci"), list) and r["structure"] != "naive":
+                speedup += f" [{r['speedup_ci'][0]:.3g}, {r['speedup_ci'][1]:.3g}]"
+            lines.append(f"| {scene} | {v} | {knobs} | {r['render_ms']['median']:.3g} | {speedup} | {paper} |")
     return "\n".join(lines)
 
 
