@@ -13,24 +13,53 @@ std::uint64_t memory_budget_bytes(const BuildLimits& limits) {
   return std::uint64_t(pages) * std::uint64_t(page) / 4;
 }
 
-std::vector<std::string> accel_names() { return {"naive", "octree", "kdtree", "bvh", "embree", "auto"}; }
+const std::vector<StructureInfo>& structures() {
+  static const std::vector<StructureInfo> table = [] {
+    std::vector<StructureInfo> out;
+    for_each_entry([&]<class E>() {
+      StructureInfo info;
+      info.name = E::kName;
+      info.summary = E::kSummary;
+      if constexpr (MissingEntry<E>) {
+        info.built = false;
+        info.missing = E::kMissing;
+      }
+      info.selector = SelectorEntry<E>;
+      const auto& knobs = E::Params::knobs();
+      info.knobs = knobs.names();
+      info.knob_table = knobs.describe();
+      info.knob_markdown = knobs.markdown();
+      out.push_back(std::move(info));
+    });
+    return out;
+  }();
+  return table;
+}
+
+const StructureInfo* find_structure(std::string_view name) {
+  for (const StructureInfo& s : structures())
+    if (s.name == name) return &s;
+  return nullptr;
+}
+
+std::vector<std::string> accel_names() {
+  std::vector<std::string> out;
+  for (const StructureInfo& s : structures()) out.push_back(s.name);
+  return out;
+}
 
 bool accel_built(std::string_view name) {
-  if (name == "embree") return ACCELBENCH_HAVE_EMBREE != 0;
-  for (const std::string& n : accel_names())
-    if (n == name) return true;
-  return false;
+  const StructureInfo* s = find_structure(name);
+  return s && s->built;
+}
+
+std::optional<std::vector<std::string>> knob_names(std::string_view name) {
+  const StructureInfo* s = find_structure(name);
+  if (!s) return std::nullopt;
+  return s->knobs;
 }
 
 namespace {
-
-/// Reads a structure's parameter struct from its JSON knobs (null = every default).
-template <class Params>
-Params parse_params(const nlohmann::json& j) {
-  Params p;
-  from_json(j, p);
-  return p;
-}
 
 std::string valid_names() {
   std::string out;
@@ -41,67 +70,57 @@ std::string valid_names() {
   return out;
 }
 
-/// The knobs of one structure as JSON (an empty object for a structure without knobs).
-template <class S>
-nlohmann::json knobs_of(const S& s) {
-  if constexpr (requires { s.params(); })
-    return nlohmann::json(s.params());
-  else
-    return nlohmann::json::object();
-}
-
-template <class S>
-struct IsAutoSelected : std::false_type {};
-template <class S>
-struct IsAutoSelected<AutoSelected<S>> : std::true_type {};
-
 }  // namespace
+
+void check_knob(std::string_view name, const std::string& knob, const nlohmann::json& value) {
+  bool found = false;
+  for_each_entry([&]<class E>() {
+    if (found || name != E::kName) return;
+    found = true;
+    typename E::Params p{};
+    E::Params::knobs().read(nlohmann::json{{knob, value}}, p);
+  });
+  if (!found)
+    throw ConfigError("unknown structure '" + std::string(name) + "' (valid: " + valid_names() + ")");
+}
 
 AnyAccel make_accel(std::string_view name, const nlohmann::json& params,
                     std::span<const Aabb> boxes, const BuildLimits& limits) {
-  if (!params.is_null() && !params.is_object())
-    throw ConfigError(std::string(name) + ": parameters must be a JSON object, got " + params.dump());
-  if (name == "naive") {
-    if (!params.is_null() && !params.empty())
-      throw ConfigError("naive: unknown parameter '" + params.begin().key() + "'");
-    return Naive(boxes);
-  }
-  if (name == "bvh") return Bvh(boxes, parse_params<BvhParams>(params), limits);
-  if (name == "octree") return Octree(boxes, parse_params<OctreeParams>(params), limits);
-  if (name == "kdtree") return KdTree(boxes, parse_params<KdTreeParams>(params), limits);
-  if (name == "embree") {
-#if ACCELBENCH_HAVE_EMBREE
-    return EmbreeAccel(boxes, parse_params<EmbreeParams>(params), limits);
-#else
-    throw ConfigError("embree: not built (Embree 3 was not found; run scripts/setup)");
-#endif
-  }
-  if (name == "auto") {
-    const auto p = parse_params<AutoParams>(params);
-    if (choose_structure(p, boxes.size()) == AutoChoice::Naive)
-      return AutoSelected<Naive>(Naive(boxes), p);
-    return AutoSelected<Bvh>(Bvh(boxes, BvhParams{}, limits), p);
-  }
-  throw ConfigError("unknown structure '" + std::string(name) + "' (valid: " + valid_names() + ")");
+  std::optional<AnyAccel> built;
+  for_each_entry([&]<class E>() {
+    if (built || name != E::kName) return;
+    const typename E::Params p = E::Params::knobs().from_json(params);
+    if constexpr (MissingEntry<E>)
+      throw ConfigError(std::string(E::kName) + ": " + E::kMissing);
+    else if constexpr (SelectorEntry<E>)
+      built = E::select(boxes, p, limits);
+    else
+      built.emplace(E(boxes, p, limits));
+  });
+  if (!built)
+    throw ConfigError("unknown structure '" + std::string(name) + "' (valid: " + valid_names() + ")");
+  return std::move(*built);
 }
 
 nlohmann::json params_of(const AnyAccel& a) {
-  return std::visit(
+  nlohmann::json j = std::visit(
       [](const auto& s) -> nlohmann::json {
-        nlohmann::json j = knobs_of(s);
-        // A structure `auto` picked says so, with the knobs that picked it.
-        if constexpr (IsAutoSelected<std::decay_t<decltype(s)>>::value)
-          j["selected_by"] = {{"structure", "auto"}, {"params", s.auto_params()}};
-        return j;
+        using S = std::decay_t<decltype(s)>;
+        return S::Params::knobs().to_json(s.params());
       },
-      a);
+      a.variant());
+  if (!a.selected_by.is_null()) j["selected_by"] = a.selected_by;
+  return j;
 }
+
 std::string name_of(const AnyAccel& a) {
-  return std::visit([](const auto& s) -> std::string { return std::decay_t<decltype(s)>::kName; }, a);
+  return std::visit([](const auto& s) -> std::string { return std::decay_t<decltype(s)>::kName; }, a.variant());
 }
+
 const BuildStats& stats_of(const AnyAccel& a) {
-  return std::visit([](const auto& s) -> const BuildStats& { return s.stats(); }, a);
+  return std::visit([](const auto& s) -> const BuildStats& { return s.stats(); }, a.variant());
 }
+
 nlohmann::json stats_json_of(const AnyAccel& a) {
   return std::visit(
       [](const auto& s) -> nlohmann::json {
@@ -109,7 +128,25 @@ nlohmann::json stats_json_of(const AnyAccel& a) {
         if constexpr (requires { s.stats_note(); }) j["note"] = s.stats_note();
         return j;
       },
-      a);
+      a.variant());
+}
+
+nlohmann::json registry_json() {
+  nlohmann::json out = nlohmann::json::array();
+  for (const StructureInfo& s : structures())
+    out.push_back({{"name", s.name},
+                   {"summary", s.summary},
+                   {"selector", s.selector},
+                   {"knobs", s.knob_table}});
+  return out;
+}
+
+std::string knob_reference_markdown() {
+  std::string md;
+  for (const StructureInfo& s : structures()) {
+    md += "### `" + s.name + "`\n\n" + s.summary + ".\n\n" + s.knob_markdown + "\n";
+  }
+  return md;
 }
 
 }  // namespace accel

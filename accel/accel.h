@@ -1,67 +1,88 @@
 #pragma once
 // Every structure behind one name-based factory, as a std::variant visited once per render so
-// that each structure's traversal loop is compiled on its own.
+// that each structure's traversal loop is compiled on its own. The names and the variant come
+// from the registry (registry.h).
 
-#include "auto_select.h"
-#include "bvh.h"
+#include "build_limits.h"
+#include "config_error.h"
 #include "geometry.h"
-#include "kdtree.h"
-#include "naive.h"
-#include "octree.h"
+#include "registry.h"
 #include "stats.h"
-#if ACCELBENCH_HAVE_EMBREE
-#include "embree_accel.h"
-#endif
 
 #include <nlohmann/json.hpp>
 
-#include <cstdint>
+#include <optional>
 #include <span>
-#include <stdexcept>
 #include <string>
 #include <string_view>
-#include <variant>
 #include <vector>
 
 namespace accel {
 
-/// A bad structure name, knob or resource limit; what() is one line naming the knob.
-struct ConfigError : std::runtime_error {
-  using std::runtime_error::runtime_error;
+/// A built structure: one alternative of StructureVariant (std::visit it), plus how it was
+/// chosen when a selector such as `auto` chose it.
+class AnyAccel : public StructureVariant {
+ public:
+  using StructureVariant::StructureVariant;
+  using StructureVariant::operator=;
+  AnyAccel() = default;
+
+  /// {"structure": "auto", "params": {...}} when a selector picked this structure; else null.
+  nlohmann::json selected_by;
+
+  /// The variant itself (for std::visit on compilers that do not visit derived classes).
+  const StructureVariant& variant() const { return *this; }
 };
 
-/// Limits every builder honours; a build that would pass one throws ConfigError naming the knob.
-struct BuildLimits {
-  /// Most bytes a structure may allocate for nodes and references; 0 means 25% of physical RAM.
-  std::uint64_t max_memory_bytes = 0;
+/// One registry entry as data.
+struct StructureInfo {
+  std::string name;               ///< Factory name.
+  std::string summary;            ///< One line: what it is.
+  bool built = true;              ///< False when compiled out of this build (see missing).
+  std::string missing;            ///< Why it is not built and how to get it; "" when built.
+  bool selector = false;          ///< Chooses among the structures (auto) instead of being one.
+  std::vector<std::string> knobs; ///< Knob names in display order.
+  nlohmann::json knob_table;      ///< KnobTable::describe() of its parameter struct.
+  std::string knob_markdown;      ///< KnobTable::markdown() of its parameter struct.
 };
 
-/// Resolves 0 to the default budget of 25% of physical memory.
-std::uint64_t memory_budget_bytes(const BuildLimits& limits);
-
-using AnyAccel = std::variant<Naive, Bvh, Octree, KdTree,
-#if ACCELBENCH_HAVE_EMBREE
-                               EmbreeAccel,
-#endif
-                               AutoSelected<Naive>, AutoSelected<Bvh>>;
+/// Every registry entry, in display order.
+const std::vector<StructureInfo>& structures();
+/// The entry called `name`, or null.
+const StructureInfo* find_structure(std::string_view name);
 
 /// Names accepted by make_accel, in display order.
 std::vector<std::string> accel_names();
 
-/// False for a structure compiled out of this build (embree without Embree 3); make_accel then
-/// throws ConfigError saying how to get it.
+/// False for a structure compiled out of this build (embree without Embree 3) or an unknown
+/// name; make_accel then throws ConfigError saying why.
 bool accel_built(std::string_view name);
+
+/// The knob names of structure `name` (empty for none); nullopt for an unknown name.
+std::optional<std::vector<std::string>> knob_names(std::string_view name);
+
+/// Throws the ConfigError make_accel would throw for knob `knob` = `value` of structure `name`
+/// (unknown structure, unknown knob, wrong type, out of range); returns when it is acceptable.
+void check_knob(std::string_view name, const std::string& knob, const nlohmann::json& value);
 
 /// Builds the structure `name` over `boxes`. `params` holds that structure's knobs (unknown keys
 /// are rejected). Throws ConfigError.
 AnyAccel make_accel(std::string_view name, const nlohmann::json& params,
                     std::span<const Aabb> boxes, const BuildLimits& limits = {});
 
-/// The exact parameters a built structure used, every knob spelled out.
+/// The exact parameters a built structure used, every knob spelled out, plus "selected_by"
+/// when a selector chose it.
 nlohmann::json params_of(const AnyAccel& a);
 std::string name_of(const AnyAccel& a);
 const BuildStats& stats_of(const AnyAccel& a);
 /// stats_of as JSON, plus a "note" where a structure cannot report some fields (embree).
 nlohmann::json stats_json_of(const AnyAccel& a);
+
+/// The registry as JSON: per entry its name, summary, selector flag and knob table; the same in
+/// every build (what `accelbench structures --json` prints and scripts/plot.py reads).
+nlohmann::json registry_json();
+
+/// The knob reference of every entry as Markdown (generated into docs/structures.md).
+std::string knob_reference_markdown();
 
 }  // namespace accel

@@ -1,21 +1,31 @@
 #include "auto_select.h"
 
-#include "params_json.h"
+#include "accel.h"
 
 namespace accel {
 
-void to_json(nlohmann::json& j, const AutoParams& p) {
-  j = {{"naive_max_prims", p.naive_max_prims}};
-}
-
-void from_json(const nlohmann::json& j, AutoParams& p) {
-  KnobReader r("auto", j);
-  r.read("naive_max_prims", p.naive_max_prims, 0, 1 << 30);
-  r.finish();
+const KnobTable<AutoParams>& AutoParams::knobs() {
+  using K = Knob<AutoParams>;
+  static const KnobTable<AutoParams> table(
+      "auto", {K::integer("naive_max_prims", &AutoParams::naive_max_prims, 0, 1 << 30, "primitives",
+                          "Scenes with at most this many primitives use naive; larger ones a tree.")
+                   .probes({0, 1 << 30})});
+  return table;
 }
 
 AutoChoice choose_structure(const AutoParams& params, std::size_t primitives) {
   return primitives <= std::size_t(params.naive_max_prims) ? AutoChoice::Naive : AutoChoice::Bvh;
+}
+
+AnyAccel AutoSelect::select(std::span<const Aabb> boxes, const AutoParams& params, const BuildLimits& limits) {
+  AutoParams::knobs().validate(params);
+  AnyAccel chosen;
+  if (choose_structure(params, boxes.size()) == AutoChoice::Naive)
+    chosen = Naive(boxes, NaiveParams{}, limits);
+  else
+    chosen = Bvh(boxes, BvhParams{}, limits);
+  chosen.selected_by = {{"structure", kName}, {"params", AutoParams::knobs().to_json(params)}};
+  return chosen;
 }
 
 }  // namespace accel

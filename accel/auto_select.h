@@ -1,16 +1,18 @@
 #pragma once
-// The `auto` structure: a cheap cost model picks naive or bvh for the scene at hand, so that a
-// handful of primitives is not slowed down by a tree (the paper's Figure 3).
+// The `auto` entry of the registry: not a structure of its own but a cost model that picks one
+// of the others for the scene at hand, so that a handful of primitives is not slowed down by a
+// tree (the paper's Figure 3).
 
-#include "bvh.h"
-#include "naive.h"
-
-#include <nlohmann/json.hpp>
+#include "build_limits.h"
+#include "geometry.h"
+#include "knob_table.h"
 
 #include <cstddef>
-#include <utility>
+#include <span>
 
 namespace accel {
+
+class AnyAccel;
 
 /// Knobs of the `auto` selection.
 ///
@@ -24,11 +26,10 @@ namespace accel {
 struct AutoParams {
   /// Scenes with at most this many primitives use naive; larger ones a bvh with default knobs.
   int naive_max_prims = 8;
-};
 
-void to_json(nlohmann::json& j, const AutoParams& p);
-/// Reads the knobs; unknown keys, wrong types and out-of-range values throw ConfigError.
-void from_json(const nlohmann::json& j, AutoParams& p);
+  /// Name, range, unit and doc line of every knob above.
+  static const KnobTable<AutoParams>& knobs();
+};
 
 /// What `auto` picked.
 enum class AutoChoice { Naive, Bvh };
@@ -36,20 +37,19 @@ enum class AutoChoice { Naive, Bvh };
 /// The cost model: naive while the primitive count is at most naive_max_prims, else bvh.
 AutoChoice choose_structure(const AutoParams& params, std::size_t primitives);
 
-/// A structure that `auto` chose: the structure itself (same name, knobs and traversal), plus
-/// the `auto` knobs that chose it, so results rows say how it was picked.
-template <class Structure>
-class AutoSelected : public Structure {
- public:
-  AutoSelected() = default;
-  AutoSelected(Structure chosen, const AutoParams& params)
-      : Structure(std::move(chosen)), auto_params_(params) {}
+/// The registry entry `auto`: builds the structure the cost model picks. The result is that
+/// structure itself (same name, knobs and traversal); AnyAccel::selected_by records the `auto`
+/// knobs that picked it, so results rows say how it was chosen.
+struct AutoSelect {
+  using Params = AutoParams;
+  static constexpr const char* kName = "auto";
+  static constexpr const char* kSummary =
+      "picks a structure for the scene with a measured cost model (naive for a few primitives)";
+  /// Marks a registry entry that chooses among the structures instead of being one.
+  static constexpr bool kSelector = true;
 
-  /// The knobs of the `auto` selection that picked this structure.
-  const AutoParams& auto_params() const { return auto_params_; }
-
- private:
-  AutoParams auto_params_;
+  /// Builds the structure chosen for `boxes`; throws ConfigError like make_accel.
+  static AnyAccel select(std::span<const Aabb> boxes, const AutoParams& params, const BuildLimits& limits);
 };
 
 }  // namespace accel

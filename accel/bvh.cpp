@@ -1,24 +1,28 @@
 #include "bvh.h"
 
 #include "accel.h"
-#include "params_json.h"
 
 namespace accel {
 
-void to_json(nlohmann::json& j, const BvhParams& p) {
-  j = {{"bins", p.bins},
-       {"max_leaf_size", p.max_leaf_size},
-       {"max_depth", p.max_depth},
-       {"traversal_cost", p.traversal_cost}};
-}
-
-void from_json(const nlohmann::json& j, BvhParams& p) {
-  KnobReader r("bvh", j);
-  r.read("bins", p.bins, 8, 256);
-  r.read("max_leaf_size", p.max_leaf_size, 1, 255);
-  r.read("max_depth", p.max_depth, 0, 64);
-  r.read("traversal_cost", p.traversal_cost, 0.0f, 1000.0f);
-  r.finish();
+const KnobTable<BvhParams>& BvhParams::knobs() {
+  using K = Knob<BvhParams>;
+  static const KnobTable<BvhParams> table(
+      "bvh",
+      {K::integer("bins", &BvhParams::bins, 8, 256, "bins per axis",
+                  "Centroid bins per axis the SAH evaluates; more bins approach a full sweep.")
+           .probes({8, 256}),
+       K::integer("max_leaf_size", &BvhParams::max_leaf_size, 1, 255, "primitives",
+                  "A node holding more primitives is always split; at or below it the SAH decides.")
+           .crossed()
+           .probes({1, 2, 4, 8, 16}),
+       K::integer("max_depth", &BvhParams::max_depth, 0, 64, "levels",
+                  "Deepest level (root = 0): a node there is a leaf whatever it holds.")
+           .crossed()
+           .probes({0, 1, 2, 3, 5, 8, 12, 20}),
+       K::number("traversal_cost", &BvhParams::traversal_cost, 0.0, 1000.0, "primitive tests",
+                 "Cost of one traversal step relative to one primitive test (SAH C_trav / C_isect).")
+           .probes({0.1, 1000.0})});
+  return table;
 }
 
 Bvh::Bvh(std::span<const Aabb> boxes, const BvhParams& params, const BuildLimits& limits)

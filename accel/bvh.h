@@ -3,6 +3,9 @@
 // traversal (nearer child first) with a small fixed stack.
 
 #include "geometry.h"
+#include "interval_slack.h"
+#include "knob_table.h"
+#include "leaf_loop.h"
 #include "ray_setup.h"
 #include "stats.h"
 
@@ -32,11 +35,10 @@ struct BvhParams {
   /// Cost of one traversal step relative to one primitive test (the SAH's C_trav / C_isect).
   /// 3 traced spheres8000 fastest (1 gave leaves of one sphere and 20% more node visits).
   float traversal_cost = 3.0f;
-};
 
-void to_json(nlohmann::json& j, const BvhParams& p);
-/// Reads the knobs; unknown keys, wrong types and out-of-range values throw ConfigError.
-void from_json(const nlohmann::json& j, BvhParams& p);
+  /// Name, range, unit and doc line of every knob above.
+  static const KnobTable<BvhParams>& knobs();
+};
 
 /// Wald's 32-byte node: the box, then for a leaf its primitive range, for an inner node the
 /// index of its first child (the second child follows it).
@@ -66,7 +68,9 @@ struct CacheLineAllocator {
 
 class Bvh {
  public:
+  using Params = BvhParams;
   static constexpr const char* kName = "bvh";
+  static constexpr const char* kSummary = "binned SAH BVH, Wald's 32-byte node, ordered traversal";
   /// Traversal stack entries; a tree is at most 64 levels deep and each level pushes one.
   static constexpr int kStackSize = 64;
 
@@ -106,13 +110,9 @@ class Bvh {
     Vec3 inv_far;  ///< inv_dir * (1 + 2 gamma(3)), for far distances (Ize 2013).
   };
 
-  // Rounding: the boxes are padded outward at build time and the ray interval is widened by
-  // this relative margin when a box is tested, so that a primitive whose computed t lies on its
-  // box's face (an axis-aligned ray through a sphere's centre) or ties the current hit exactly
-  // is still visited: at a tie the lower id must win whatever the visiting order.
-  static constexpr float kIntervalSlack = 16.0f * gamma_bound(1);
-  static float widen_down(float t) { return t - std::abs(t) * kIntervalSlack; }
-  static float widen_up(float t) { return t + std::abs(t) * kIntervalSlack; }
+  // Rounding: the boxes are padded outward at build time (pad_outward) and the ray interval is
+  // widened (interval_slack.h) when a box is tested, so that a primitive whose computed t lies
+  // on its box's face or ties the current hit exactly is still visited.
 
   /// Entry distance of the ray into node `n` within [t0, t1], or +inf when it misses. The
   /// direction octant picks the near and far planes at compile time; far distances use the
@@ -179,13 +179,7 @@ class Bvh {
       if constexpr (Count) counters->nodes_visited++;
       const BvhNode& n = nodes[node];
       if (n.is_leaf()) {
-        for (std::uint32_t i = n.first, end = n.first + n.count; i < end; ++i) {
-          if constexpr (Count) counters->prims_tested++;
-          if (leaf_fn(ids[i], ray)) {
-            if constexpr (AnyHit) return true;
-            hit = true;
-          }
-        }
+        if (test_leaf<Count, AnyHit>(ids + n.first, n.count, ray, leaf_fn, counters, hit)) return true;
         t_hi = widen_up(ray.tmax);
       } else {
         if constexpr (Count) counters->boxes_tested += 2;

@@ -5,6 +5,7 @@
 #include "bvh.h"
 
 #include "accel.h"
+#include "binned_sah.h"
 
 #include <algorithm>
 #include <chrono>
@@ -16,42 +17,13 @@
 namespace accel {
 namespace {
 
-struct Bin {
-  Aabb box;
-  std::uint32_t count = 0;
-};
-
-/// Best split found for one node.
-struct Split {
-  int axis = -1;          ///< -1: no plane separates the centroids.
-  int bin = 0;            ///< Bins [0, bin) go left.
-  float cost = kInfinity;  ///< SAH cost, in units of one primitive test.
-};
-
-/// Maps a centroid coordinate to its bin; the same function bins and partitions, so both agree.
-struct Binner {
-  float lo;
-  float scale;
-  int last;
-  int operator()(float c) const {
-    const int b = int((c - lo) * scale);
-    return std::clamp(b, 0, last);
-  }
-};
-
-Binner binner_for(const Aabb& centroids, int axis, int bins) {
-  const float extent = centroids.hi[axis] - centroids.lo[axis];
-  return {centroids.lo[axis], float(bins) / extent, bins - 1};
-}
-
 /// Pads a box outward by a few ulps of its coordinates, so a primitive whose computed hit lies
-/// on its box's face is never culled by the rounding of the slab test (see kIntervalSlack).
+/// on its box's face is never culled by the rounding of the slab test (see interval_slack.h).
 void pad_outward(BvhNode& n) {
-  constexpr float rel = 4.0f * std::numeric_limits<float>::epsilon();
   for (int a = 0; a < 3; ++a) {
-    const float m = std::max(std::abs(n.lo[a]), std::abs(n.hi[a]));
-    n.lo[a] -= m * rel;
-    n.hi[a] += m * rel;
+    const float pad = box_pad(n.lo[a], n.hi[a]);
+    n.lo[a] -= pad;
+    n.hi[a] += pad;
   }
 }
 
@@ -61,12 +33,7 @@ class Builder {
 
   Builder(std::span<const Aabb> boxes, const BvhParams& params, Nodes& nodes,
           std::vector<std::uint32_t>& ids, BuildStats& stats)
-      : boxes_(boxes), params_(params), nodes_(nodes), ids_(ids), stats_(stats) {
-    centroids_.resize(boxes.size());
-    for (std::size_t i = 0; i < boxes.size(); ++i) centroids_[i] = boxes[i].center();
-    bins_.resize(std::size_t(params.bins));
-    right_cost_.resize(std::size_t(params.bins));
-  }
+      : params_(params), nodes_(nodes), ids_(ids), stats_(stats), sah_(boxes, params.bins, params.traversal_cost) {}
 
   void run() {
     nodes_.push_back({});  // the root
@@ -77,10 +44,7 @@ class Builder {
  private:
   void build_node(std::uint32_t index, std::uint32_t begin, std::uint32_t end, int depth) {
     Aabb box, centroids;
-    for (std::uint32_t i = begin; i < end; ++i) {
-      box.grow(boxes_[ids_[i]]);
-      centroids.grow(centroids_[ids_[i]]);
-    }
+    sah_.bounds(ids_.data(), begin, end, box, centroids);
     set_box(nodes_[index], box);
     stats_.max_depth_reached = std::max(stats_.max_depth_reached, depth);
     const std::uint32_t count = end - begin;
@@ -88,22 +52,12 @@ class Builder {
 
     if (count == 1 || depth >= params_.max_depth) return make_leaf(index, begin, count, area);
 
-    const Split split = find_split(begin, end, centroids, area);
-    std::uint32_t mid;
-    if (split.axis < 0) {
-      // Every centroid coincides: no plane separates them. Split the range in half when the
-      // leaf would be too big, otherwise keep it.
-      if (count <= std::uint32_t(params_.max_leaf_size)) return make_leaf(index, begin, count, area);
-      mid = begin + count / 2;
-    } else {
-      if (count <= std::uint32_t(params_.max_leaf_size) && float(count) <= split.cost)
-        return make_leaf(index, begin, count, area);
-      const Binner bin = binner_for(centroids, split.axis, params_.bins);
-      const int axis = split.axis;
-      const auto it = std::partition(ids_.begin() + begin, ids_.begin() + end,
-                                     [&](std::uint32_t id) { return bin(centroids_[id][axis]) < split.bin; });
-      mid = std::uint32_t(it - ids_.begin());
-    }
+    const BinnedSah::Split split = sah_.find(ids_.data(), begin, end, centroids, area);
+    // Every centroid coinciding (no plane), the range is cut in half when a leaf would be too
+    // big; otherwise the SAH decides between a leaf and the split.
+    const bool small = count <= std::uint32_t(params_.max_leaf_size);
+    if (small && (split.axis < 0 || float(count) <= split.cost)) return make_leaf(index, begin, count, area);
+    const std::uint32_t mid = sah_.partition(ids_.data(), begin, end, centroids, split);
 
     const auto left = std::uint32_t(nodes_.size());
     nodes_[index].first = left;
@@ -113,44 +67,6 @@ class Builder {
     stats_.sah_cost += kStatsTraversalCost * area;
     build_node(left, begin, mid, depth + 1);
     build_node(left + 1, mid, end, depth + 1);
-  }
-
-  Split find_split(std::uint32_t begin, std::uint32_t end, const Aabb& centroids, float area) {
-    Split best;
-    const int bins = params_.bins;
-    // A flat node (area 0) still splits spatially: its children cost nothing but the step.
-    const float inv_area = area > 0.0f ? 1.0f / area : 0.0f;
-    for (int axis = 0; axis < 3; ++axis) {
-      if (!(centroids.hi[axis] > centroids.lo[axis])) continue;
-      std::vector<Bin>& bin = bins_;
-      std::fill(bin.begin(), bin.end(), Bin{});
-      const Binner which = binner_for(centroids, axis, bins);
-      for (std::uint32_t i = begin; i < end; ++i) {
-        Bin& b = bin[std::size_t(which(centroids_[ids_[i]][axis]))];
-        b.box.grow(boxes_[ids_[i]]);
-        b.count++;
-      }
-      // Sweep from the right storing the cost of every right part, then from the left.
-      std::vector<float>& right_cost = right_cost_;
-      Aabb acc;
-      std::uint32_t n = 0;
-      for (int k = bins - 1; k > 0; --k) {
-        acc.grow(bin[std::size_t(k)].box);
-        n += bin[std::size_t(k)].count;
-        right_cost[std::size_t(k)] = n ? acc.half_area() * float(n) : 0.0f;
-      }
-      acc = Aabb{};
-      n = 0;
-      for (int k = 1; k < bins; ++k) {
-        acc.grow(bin[std::size_t(k - 1)].box);
-        n += bin[std::size_t(k - 1)].count;
-        if (n == 0 || n == end - begin) continue;
-        const float cost =
-            params_.traversal_cost + (acc.half_area() * float(n) + right_cost[std::size_t(k)]) * inv_area;
-        if (cost < best.cost) best = {axis, k, cost};
-      }
-    }
-    return best;
   }
 
   void make_leaf(std::uint32_t index, std::uint32_t begin, std::uint32_t count, float area) {
@@ -171,23 +87,17 @@ class Builder {
   // BuildStats::sah_cost is defined with traversal cost 1 whatever the builder's knob.
   static constexpr double kStatsTraversalCost = 1.0;
 
-  std::span<const Aabb> boxes_;
   const BvhParams& params_;
   Nodes& nodes_;
   std::vector<std::uint32_t>& ids_;
   BuildStats& stats_;
-  std::vector<Vec3> centroids_;
-  std::vector<Bin> bins_;          ///< Scratch of find_split, one axis at a time.
-  std::vector<float> right_cost_;  ///< Scratch of find_split: SAH term of bins [k, bins).
+  BinnedSah sah_;
 };
 
 }  // namespace
 
 void Bvh::build(std::span<const Aabb> boxes, std::uint64_t max_memory_bytes) {
-  {
-    BvhParams checked;  // the same range checks as the JSON knobs, for structs built in code
-    from_json(nlohmann::json(params_), checked);
-  }
+  BvhParams::knobs().validate(params_);  // the JSON knobs' checks, for structs built in code
   const auto start = std::chrono::steady_clock::now();
   const std::uint64_t n = boxes.size();
   const std::uint64_t node_bound = n ? 2 * n : 0;  // 2n - 1 nodes and the unused one

@@ -1,7 +1,6 @@
 #include "embree_accel.h"
 
 #include "accel.h"
-#include "params_json.h"
 
 #include <algorithm>
 #include <chrono>
@@ -9,21 +8,6 @@
 #include <string>
 
 namespace accel {
-
-void to_json(nlohmann::json& j, const EmbreeParams& p) {
-  j = {{"build_quality", p.build_quality == EmbreeQuality::High ? "high" : "medium"},
-       {"robust", p.robust},
-       {"build_threads", p.build_threads}};
-}
-
-void from_json(const nlohmann::json& j, EmbreeParams& p) {
-  KnobReader r("embree", j);
-  r.read_enum("build_quality", p.build_quality,
-              {{"medium", EmbreeQuality::Medium}, {"high", EmbreeQuality::High}});
-  r.read("robust", p.robust);
-  r.read("build_threads", p.build_threads, 0, 1024);
-  r.finish();
-}
 
 namespace embree_detail {
 
@@ -63,9 +47,7 @@ void bounds_fn(const RTCBoundsFunctionArguments* args) {
   const Aabb& b = static_cast<const BoxesView*>(args->geometryUserPtr)->boxes[args->primID];
   // Padded outward by a few ulps, as Bvh pads its nodes: a hit computed on the box face must
   // not be culled by rounding.
-  constexpr float rel = 4.0f * std::numeric_limits<float>::epsilon();
-  auto pad = [](float lo, float hi) { return std::max(std::abs(lo), std::abs(hi)) * rel; };
-  const float px = pad(b.lo.x, b.hi.x), py = pad(b.lo.y, b.hi.y), pz = pad(b.lo.z, b.hi.z);
+  const float px = box_pad(b.lo.x, b.hi.x), py = box_pad(b.lo.y, b.hi.y), pz = box_pad(b.lo.z, b.hi.z);
   RTCBounds* o = args->bounds_o;
   o->lower_x = b.lo.x - px;
   o->lower_y = b.lo.y - py;
@@ -82,7 +64,7 @@ void intersect_fn(const RTCIntersectFunctionNArguments* args) {
   const QueryContext& q = query_of(args->context);
   if (q.test(q, args->primID)) {
     auto* rh = reinterpret_cast<RTCRayHit*>(args->rayhit);  // N == 1 for rtcIntersect1
-    rh->ray.tfar = widen(q.ray->tmax, 1.0f);
+    rh->ray.tfar = widen_up(q.ray->tmax);
     rh->hit.primID = args->primID;
     rh->hit.geomID = args->geomID;
   }
@@ -100,10 +82,7 @@ void occluded_fn(const RTCOccludedFunctionNArguments* args) {
 EmbreeAccel::EmbreeAccel(std::span<const Aabb> boxes, const EmbreeParams& params,
                          const BuildLimits& limits)
     : params_(params), monitor_(std::make_unique<embree_detail::MemoryMonitor>()) {
-  {
-    EmbreeParams checked;  // the same range checks as the JSON knobs, for structs built in code
-    from_json(nlohmann::json(params_), checked);
-  }
+  EmbreeParams::knobs().validate(params_);  // the JSON knobs' checks, for structs built in code
   const auto start = std::chrono::steady_clock::now();
   const std::uint64_t budget = memory_budget_bytes(limits);
   monitor_->budget = budget > std::uint64_t(std::numeric_limits<std::int64_t>::max())

@@ -8,8 +8,14 @@
 // are nodes visited or boxes tested per ray; they are reported as 0 (see stats_note()). The
 // leaf callbacks are counted, so prims_tested is exact.
 
+#include "embree_params.h"
 #include "geometry.h"
+#include "interval_slack.h"
 #include "stats.h"
+
+#include <span>
+
+#if ACCELBENCH_HAVE_EMBREE
 
 #include <embree3/rtcore.h>
 #include <nlohmann/json.hpp>
@@ -17,31 +23,12 @@
 #include <cmath>
 #include <cstdint>
 #include <memory>
-#include <span>
 #include <type_traits>
 #include <utility>
 
 namespace accel {
 
 struct BuildLimits;
-
-/// Embree's BVH build quality.
-enum class EmbreeQuality { Medium, High };
-
-/// Knobs of the Embree adapter.
-struct EmbreeParams {
-  /// Build quality: RTC_BUILD_QUALITY_MEDIUM or RTC_BUILD_QUALITY_HIGH (slower build, SAH splits).
-  EmbreeQuality build_quality = EmbreeQuality::High;
-  /// RTC_SCENE_FLAG_ROBUST: conservative box tests, so no primitive is culled by rounding.
-  bool robust = true;
-  /// Threads Embree's TBB builder may use; 0 = Embree's default (every core). The other
-  /// builders are single-threaded, so 1 keeps build times comparable.
-  int build_threads = 1;
-};
-
-void to_json(nlohmann::json& j, const EmbreeParams& p);
-/// Reads the knobs; unknown keys, wrong types and out-of-range values throw ConfigError.
-void from_json(const nlohmann::json& j, EmbreeParams& p);
 
 namespace embree_detail {
 
@@ -94,20 +81,16 @@ bool call_leaf(const QueryContext& q, std::uint32_t prim) {
   return (*static_cast<LeafFn*>(q.leaf))(prim, *q.ray);
 }
 
-/// Widens a ray bound by a relative margin: Embree must still visit a primitive whose t equals
-/// the current hit (ties go to the lower id) or lies on its box face; see Bvh::kIntervalSlack.
-inline float widen(float t, float direction) {
-  constexpr float kSlack = 16.0f * gamma_bound(1);
-  return t + direction * std::abs(t) * kSlack;
-}
-
 struct MemoryMonitor;
 
 }  // namespace embree_detail
 
 class EmbreeAccel {
  public:
+  using Params = EmbreeParams;
   static constexpr const char* kName = "embree";
+  static constexpr const char* kSummary =
+      "Embree 3 user geometry calling our primitive routine (the peer we measure against)";
 
   EmbreeAccel() = default;
   /// Builds an Embree scene over `boxes` (primitive id = index). Throws ConfigError when Embree
@@ -166,12 +149,12 @@ class EmbreeAccel {
     r.org_x = ray.org.x;
     r.org_y = ray.org.y;
     r.org_z = ray.org.z;
-    r.tnear = embree_detail::widen(ray.tmin, -1.0f);
+    r.tnear = widen_down(ray.tmin);
     r.dir_x = ray.dir.x;
     r.dir_y = ray.dir.y;
     r.dir_z = ray.dir.z;
     r.time = 0.0f;
-    r.tfar = embree_detail::widen(ray.tmax, 1.0f);
+    r.tfar = widen_up(ray.tmax);
     r.mask = 0xffffffffu;
     r.id = 0;
     r.flags = 0;
@@ -186,3 +169,21 @@ class EmbreeAccel {
 };
 
 }  // namespace accel
+
+#else  // Embree 3 not found: the name is registered, and make_accel says how to get it.
+
+namespace accel {
+
+/// Stands in for the Embree adapter in a build without Embree 3; never constructed.
+struct EmbreeAccel {
+  using Params = EmbreeParams;
+  static constexpr const char* kName = "embree";
+  static constexpr const char* kSummary =
+      "Embree 3 user geometry calling our primitive routine (the peer we measure against)";
+  /// Why it is missing and what to do, for make_accel's error.
+  static constexpr const char* kMissing = "not built (Embree 3 was not found; run scripts/setup)";
+};
+
+}  // namespace accel
+
+#endif

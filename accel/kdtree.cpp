@@ -1,45 +1,43 @@
 #include "kdtree.h"
 
 #include "accel.h"
-#include "params_json.h"
 
 #include <chrono>
 #include <climits>
 
 namespace accel {
 
-void to_json(nlohmann::json& j, const KdTreeParams& p) {
-  j = {{"max_depth", p.max_depth},
-       {"max_leaf_size", p.max_leaf_size},
-       {"placement", placement_name(p.placement)},
-       {"split", p.split == SplitRule::Midpoint ? "midpoint" : "sah"},
-       {"traversal_cost", p.traversal_cost},
-       {"intersection_cost", p.intersection_cost},
-       {"empty_bonus", p.empty_bonus}};
-}
-
-void from_json(const nlohmann::json& j, KdTreeParams& p) {
-  KnobReader r("kdtree", j);
-  r.read("max_depth", p.max_depth, 0, 64);
-  r.read("max_leaf_size", p.max_leaf_size, 1, INT_MAX);
-  r.read_enum("placement", p.placement,
-              {{"leaves", Placement::Leaves}, {"every_level", Placement::EveryLevel}});
-  r.read_enum("split", p.split, {{"midpoint", SplitRule::Midpoint}, {"sah", SplitRule::Sah}});
-  r.read("traversal_cost", p.traversal_cost, 0.0f, 1e6f);
-  r.read("intersection_cost", p.intersection_cost, 1e-6f, 1e6f);
-  r.read("empty_bonus", p.empty_bonus, 0.0f, 1.0f);
-  r.finish();
-}
-
-void validate(const KdTreeParams& p) {
-  // Route the struct through the JSON reader so both paths give the same one-line messages.
-  KdTreeParams checked;
-  from_json(nlohmann::json(p), checked);
+const KnobTable<KdTreeParams>& KdTreeParams::knobs() {
+  using K = Knob<KdTreeParams>;
+  static const KnobTable<KdTreeParams> table(
+      "kdtree",
+      {K::integer("max_depth", &KdTreeParams::max_depth, 0, 64, "levels",
+                  "Deepest level a cell may be split to (root = 0); a cell there is a leaf.")
+           .crossed()
+           .probes({0, 1, 2, 3, 5, 8, 12, 20}),
+       K::integer("max_leaf_size", &KdTreeParams::max_leaf_size, 1, INT_MAX, "primitives",
+                  "A cell holding this many primitives or fewer is a leaf.")
+           .crossed()
+           .probes({1, 2, 4, 8, 16}),
+       placement_knob(&KdTreeParams::placement).crossed(),
+       K::choice("split", &KdTreeParams::split, {{"midpoint", SplitRule::Midpoint}, {"sah", SplitRule::Sah}},
+                 "How split planes are chosen: the longest axis's midpoint (the paper), or the SAH.")
+           .variant()
+           .crossed(),
+       K::number("traversal_cost", &KdTreeParams::traversal_cost, 0.0, 1e6, "SAH cost units",
+                 "SAH cost of one traversal step (pbrt-v3: 1); split sah only.")
+           .probes({0.0, 1e6}),
+       K::number("intersection_cost", &KdTreeParams::intersection_cost, 1e-6, 1e6, "SAH cost units",
+                 "SAH cost of one primitive test (pbrt-v3: 80; measured here for spheres: 0.5).")
+           .probes({1e-6, 80.0}),
+       K::number("empty_bonus", &KdTreeParams::empty_bonus, 0.0, 1.0, "fraction",
+                 "Fraction of the SAH cost forgiven when a split leaves one side empty (pbrt-v3: 0.5).")});
+  return table;
 }
 
 KdTree::KdTree(std::span<const Aabb> boxes, const KdTreeParams& params, const BuildLimits& limits)
     : params_(params) {
-  validate(params_);
+  KdTreeParams::knobs().validate(params_);
   const auto start = std::chrono::steady_clock::now();
   build(boxes, memory_budget_bytes(limits));
   stats_.build_ms =

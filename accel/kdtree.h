@@ -6,6 +6,9 @@
 // traversed front to back with a small stack here.
 
 #include "geometry.h"
+#include "interval_slack.h"
+#include "knob_table.h"
+#include "leaf_loop.h"
 #include "placement.h"
 #include "ray_setup.h"
 #include "stats.h"
@@ -62,13 +65,10 @@ struct KdTreeParams {
   float intersection_cost = 0.5f;
   /// Fraction of the SAH cost forgiven when a split leaves one side empty, 0..1 (pbrt-v3: 0.5).
   float empty_bonus = 0.2f;
-};
 
-void to_json(nlohmann::json& j, const KdTreeParams& p);
-/// Reads the knobs; unknown keys, wrong types and out-of-range values throw ConfigError.
-void from_json(const nlohmann::json& j, KdTreeParams& p);
-/// Throws ConfigError naming the first knob out of range.
-void validate(const KdTreeParams& p);
+  /// Name, range, unit and doc line of every knob above.
+  static const KnobTable<KdTreeParams>& knobs();
+};
 
 /// pbrt-v3's 8-byte node. An inner node's lower child follows it; its upper child's index is
 /// stored. A leaf's primitives are prim_ids[payload, payload + count).
@@ -101,7 +101,10 @@ struct KdPrimRange {
 
 class KdTree {
  public:
+  using Params = KdTreeParams;
   static constexpr const char* kName = "kdtree";
+  static constexpr const char* kSummary =
+      "the paper's section 3.2 kd-tree: midpoint or SAH splits, pbrt-v3's 8-byte node";
   /// Traversal stack entries: one per level at most, and a tree is at most 64 levels deep.
   static constexpr int kStackSize = 64;
 
@@ -143,10 +146,7 @@ class KdTree {
  private:
   // Cells whose entry ties the current hit within rounding are still visited (at a tie the
   // lower id wins whatever the visiting order), and a split plane within rounding of a cell's
-  // end sends the ray into both children.
-  static constexpr float kIntervalSlack = 16.0f * gamma_bound(1);
-  static float widen_up(float t) { return t + std::abs(t) * kIntervalSlack; }
-  static float widen_down(float t) { return t - std::abs(t) * kIntervalSlack; }
+  // end sends the ray into both children (interval_slack.h).
 
   template <bool Count, bool AnyHit, bool InnerPrims, class LeafFn>
   bool traverse(Ray& ray, LeafFn& leaf_fn, TraversalCounters* counters) const {
@@ -173,13 +173,8 @@ class KdTree {
       const KdNode n = nodes_[node];
       if constexpr (InnerPrims) {
         const KdPrimRange r = inner_prims_[node];
-        for (std::uint32_t i = r.begin, end = r.begin + r.count; i < end; ++i) {
-          if constexpr (Count) counters->prims_tested++;
-          if (leaf_fn(prim_ids_[i], ray)) {
-            if constexpr (AnyHit) return true;
-            hit = true;
-          }
-        }
+        if (test_leaf<Count, AnyHit>(prim_ids_.data() + r.begin, r.count, ray, leaf_fn, counters, hit))
+          return true;
       }
       if (!n.is_leaf()) {
         if constexpr (Count) counters->boxes_tested++;
@@ -203,13 +198,9 @@ class KdTree {
         }
         continue;
       }
-      for (std::uint32_t i = n.prim_begin(), end = i + n.prim_count(); i < end; ++i) {
-        if constexpr (Count) counters->prims_tested++;
-        if (leaf_fn(prim_ids_[i], ray)) {
-          if constexpr (AnyHit) return true;
-          hit = true;
-        }
-      }
+      if (test_leaf<Count, AnyHit>(prim_ids_.data() + n.prim_begin(), n.prim_count(), ray, leaf_fn,
+                                   counters, hit))
+        return true;
       // Next pending cell that starts before the current hit. A hit found beyond this leaf is
       // still a valid candidate: it has shortened ray.tmax. The stack is not sorted by entry
       // (a ray lying in a split plane pushes a cell with the same interval as the one it

@@ -1,10 +1,10 @@
 #pragma once
 // The plain loop over every primitive: the baseline every speedup is measured against.
 
+#include "build_limits.h"
 #include "geometry.h"
+#include "knob_table.h"
 #include "stats.h"
-
-#include <nlohmann/json.hpp>
 
 #include <cstdint>
 #include <span>
@@ -12,15 +12,23 @@
 namespace accel {
 
 /// The naive structure has no knobs.
-struct NaiveParams {};
-inline void to_json(nlohmann::json& j, const NaiveParams&) { j = nlohmann::json::object(); }
+struct NaiveParams {
+  /// The empty table: any knob is an error.
+  static const KnobTable<NaiveParams>& knobs() {
+    static const KnobTable<NaiveParams> table("naive", {});
+    return table;
+  }
+};
 
 class Naive {
  public:
+  using Params = NaiveParams;
   static constexpr const char* kName = "naive";
+  static constexpr const char* kSummary = "the loop over every primitive: the baseline";
 
   Naive() = default;
-  Naive(std::span<const Aabb> boxes, const NaiveParams& = {})
+  Naive(std::span<const Aabb> boxes, const NaiveParams& params, const BuildLimits&) : Naive(boxes, params) {}
+  explicit Naive(std::span<const Aabb> boxes, const NaiveParams& = {})
       : count_(static_cast<std::uint32_t>(boxes.size())) {
     stats_.primitives = count_;
     stats_.prim_refs = count_;
@@ -51,9 +59,11 @@ class Naive {
     return false;
   }
 
+  const NaiveParams& params() const { return params_; }
   const BuildStats& stats() const { return stats_; }
 
  private:
+  NaiveParams params_;
   std::uint32_t count_ = 0;
   BuildStats stats_;
 };

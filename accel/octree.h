@@ -4,6 +4,9 @@
 // are neither stored nor visited. Built in octree_builder.cpp; traversed front to back here.
 
 #include "geometry.h"
+#include "interval_slack.h"
+#include "knob_table.h"
+#include "leaf_loop.h"
 #include "placement.h"
 #include "ray_setup.h"
 #include "stats.h"
@@ -32,13 +35,10 @@ struct OctreeParams {
   int max_leaf_size = 8;
   /// Where a primitive overlapping several children is stored.
   Placement placement = Placement::Leaves;
-};
 
-void to_json(nlohmann::json& j, const OctreeParams& p);
-/// Reads the knobs; unknown keys, wrong types and out-of-range values throw ConfigError.
-void from_json(const nlohmann::json& j, OctreeParams& p);
-/// Throws ConfigError naming the first knob out of range.
-void validate(const OctreeParams& p);
+  /// Name, range, unit and doc line of every knob above.
+  static const KnobTable<OctreeParams>& knobs();
+};
 
 /// One stored cell. Its geometry is implicit: child c of a cell is the octant whose bit k is 1
 /// when it is the upper half on axis k. The stored children of a cell are contiguous, in
@@ -72,7 +72,9 @@ inline Aabb child_cell(const Aabb& cell, const Vec3& mid, unsigned c) {
 
 class Octree {
  public:
+  using Params = OctreeParams;
   static constexpr const char* kName = "octree";
+  static constexpr const char* kSummary = "the paper's section 3.1 octree: 8 equal children per cell";
   /// Traversal stack entries: each level pushes at most 8 children and pops its own cell.
   static constexpr int kStackSize = 7 * 64 + 8;
 
@@ -108,9 +110,7 @@ class Octree {
  private:
   // A hit whose t ties the current hit (or a cell entry within rounding of it) must still be
   // visited, because at a tie the lower id wins whatever the visiting order: cells are pruned
-  // against tmax widened by a few ulps.
-  static constexpr float kIntervalSlack = 16.0f * gamma_bound(1);
-  static float widen_up(float t) { return t + std::abs(t) * kIntervalSlack; }
+  // against tmax widened by a few ulps (interval_slack.h).
 
   /// A cell waiting on the stack with the ray's parameter interval inside it. Plain floats, not
   /// an Aabb: the stack is not initialised per ray, and its entries are copied often.
@@ -143,13 +143,9 @@ class Octree {
       if (p.t0 > widen_up(ray.tmax)) continue;
       if constexpr (Count) counters->nodes_visited++;
       const OctreeNode& n = nodes_[p.node];
-      for (std::uint32_t i = n.prim_begin, end = n.prim_begin + n.prim_count; i < end; ++i) {
-        if constexpr (Count) counters->prims_tested++;
-        if (leaf_fn(prim_ids_[i], ray)) {
-          if constexpr (AnyHit) return true;
-          hit = true;
-        }
-      }
+      if (test_leaf<Count, AnyHit>(prim_ids_.data() + n.prim_begin, n.prim_count, ray, leaf_fn, counters,
+                                   hit))
+        return true;
       if (n.is_leaf()) continue;
 
       // Octant-relative child index j = c ^ octant: bit k of j is 0 for the half the ray is in

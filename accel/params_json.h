@@ -1,8 +1,10 @@
 #pragma once
-// Reading a structure's knobs from JSON: every key must be known and of the right type, and
-// every value in range, or a one-line ConfigError names the structure and the key.
+// The older knob reader, still used by photon/'s parameter structs: every key must be known and
+// of the right type, and every value in range, or a one-line ConfigError names the owner and
+// the key. New parameter structs use a knob table (knob_table.h), which also writes JSON, reads
+// --knob and generates the docs from one list; the structures' params all moved there.
 
-#include "accel.h"
+#include "config_error.h"
 
 #include <nlohmann/json.hpp>
 

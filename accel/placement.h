@@ -2,13 +2,9 @@
 // Where a tree stores a primitive that overlaps several children: the paper's two policies,
 // shared by the octree and the kd-tree.
 
-#include <nlohmann/json.hpp>
+#include "knob_table.h"
 
 #include <cstdint>
-#include <optional>
-#include <stdexcept>
-#include <string>
-#include <string_view>
 
 namespace accel {
 
@@ -25,22 +21,15 @@ inline const char* placement_name(Placement p) {
   return p == Placement::Leaves ? "leaves" : "every_level";
 }
 
-/// The placement spelled `s`, or nothing when `s` names none.
-inline std::optional<Placement> parse_placement(std::string_view s) {
-  if (s == "leaves") return Placement::Leaves;
-  if (s == "every_level") return Placement::EveryLevel;
-  return std::nullopt;
-}
-
-inline void to_json(nlohmann::json& j, Placement p) { j = placement_name(p); }
-
-/// Throws std::invalid_argument (one line) for anything but "leaves" or "every_level".
-inline void from_json(const nlohmann::json& j, Placement& p) {
-  const std::optional<Placement> parsed =
-      j.is_string() ? parse_placement(j.get<std::string>()) : std::nullopt;
-  if (!parsed)
-    throw std::invalid_argument("placement must be \"leaves\" or \"every_level\", got " + j.dump());
-  p = *parsed;
+/// The `placement` knob of a tree whose parameter struct P stores it in `member`.
+template <class P>
+Knob<P> placement_knob(Placement P::*member) {
+  return Knob<P>::choice("placement", member,
+                         {{placement_name(Placement::Leaves), Placement::Leaves},
+                          {placement_name(Placement::EveryLevel), Placement::EveryLevel}},
+                         "Where a primitive overlapping several children is stored: in every leaf it "
+                         "overlaps, or once, at the node whose split it straddles (the paper's fix).")
+      .variant();
 }
 
 }  // namespace accel

@@ -19,6 +19,7 @@
 
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <bit>
 #include <chrono>
 #include <cmath>
@@ -251,19 +252,36 @@ struct Config {
   std::string label;
   std::string name;
   json knobs;
+  std::vector<std::string> knob_names;  ///< Every knob the structure has.
+
+  bool has_knob(const std::string& k) const {
+    return std::find(knob_names.begin(), knob_names.end(), k) != knob_names.end();
+  }
 };
 
+/// From the registry: every structure built here at its defaults, plus one configuration per
+/// other value of each knob that changes the algorithm (KnobTable variant knobs: kdtree_sah,
+/// octree_every_level, ...).
 std::vector<Config> trace_configs() {
   std::vector<Config> out;
-  for (const std::string& name : accel::accel_names()) {
-    if (!accel::accel_built(name)) continue;
-    if (name == "kdtree") {
-      out.push_back({"kdtree_midpoint", name, {{"split", "midpoint"}}});
-      out.push_back({"kdtree_sah", name, {{"split", "sah"}}});
-    } else {
-      out.push_back({name, name, json::object()});
+  for (const accel::StructureInfo& s : accel::structures()) {
+    if (!s.built) continue;
+    out.push_back({s.name, s.name, json::object(), s.knobs});
+    for (const json& k : s.knob_table) {
+      if (!k.at("variant").get<bool>() || !k.contains("choices")) continue;
+      for (const json& c : k.at("choices"))
+        if (c != k.at("default"))
+          out.push_back({s.name + "_" + c.get<std::string>(), s.name, {{k.at("name").get<std::string>(), c}}, s.knobs});
     }
   }
+  return out;
+}
+
+/// The structures with both tree knobs (max_depth, max_leaf_size) that the knob grids vary.
+std::vector<Config> tree_configs() {
+  std::vector<Config> out;
+  for (const Config& c : trace_configs())
+    if (c.has_knob("max_depth") && c.has_knob("max_leaf_size")) out.push_back(c);
   return out;
 }
 
@@ -276,8 +294,7 @@ void register_benchmarks() {
         benchmark::RegisterBenchmark(bm.c_str(), bm_trace, std::string(scene), set, c.name, c.knobs)
             ->Unit(benchmark::kMillisecond);
       }
-  for (const Config& c : trace_configs()) {
-    if (c.name != "bvh" && c.name != "octree" && c.name != "kdtree") continue;
+  for (const Config& c : tree_configs()) {
     const std::string bm = "TraceKnobs/spheres8000/coherent/" + c.label;
     benchmark::RegisterBenchmark(bm.c_str(), bm_trace_knobs, c.name, c.knobs)
         ->ArgNames({"max_depth", "max_leaf_size"})
@@ -285,8 +302,7 @@ void register_benchmarks() {
         ->Unit(benchmark::kMillisecond);
   }
   // Build time over the tree knobs; the BVH's target is <= 5 ms at (64, 4) for spheres8000.
-  for (const Config& c : trace_configs()) {
-    if (c.name != "bvh" && c.name != "octree" && c.name != "kdtree") continue;
+  for (const Config& c : tree_configs()) {
     const std::string bm = "Build/spheres8000/" + c.label;
     benchmark::RegisterBenchmark(bm.c_str(), bm_build, std::string("spheres8000"), c.name, c.knobs)
         ->ArgNames({"max_depth", "max_leaf_size"})

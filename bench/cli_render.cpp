@@ -21,6 +21,7 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace bench {
 
@@ -40,6 +41,7 @@ struct RenderFlags {
   float exposure = 0.0f;
   int max_depth = 0;
   int leaf_size = 0;
+  std::vector<std::string> knobs;  ///< --knob NAME=VALUE, any knob of the structure.
   std::string integrator;  ///< Integrator name (bench/integrators.h); "" = whitted.
   bool spd = false;        ///< Shorthand for --integrator spd.
   /// auto | mixed: primitive dispatch (mixed measures the fast path).
@@ -60,13 +62,20 @@ void require_extension(const std::string& path, const char* ext, const std::stri
     throw std::runtime_error(flag + ": expected a " + ext + " file name, got '" + path + "'");
 }
 
-/// Only the knobs the user gave, under the factory's names; the factory validates them.
+/// Only the knobs the user gave, under the factory's names; the factory validates them with the
+/// knob table's messages. The named flags are shorthands for --knob.
 nlohmann::json knob_params(const RenderFlags& f) {
   nlohmann::json params = nlohmann::json::object();
   if (f.max_depth_opt->count()) params["max_depth"] = f.max_depth;
   if (f.leaf_size_opt->count()) params["max_leaf_size"] = f.leaf_size;
   if (f.placement_opt->count()) params["placement"] = f.placement;
   if (f.split_opt->count()) params["split"] = f.split;
+  for (const std::string& text : f.knobs) {
+    auto [name, value] = accel::parse_knob_assignment(text);
+    if (params.contains(name))
+      throw std::runtime_error("--knob: '" + name + "' is given twice");
+    params[name] = std::move(value);
+  }
   return params;
 }
 
@@ -227,6 +236,8 @@ void add_render_command(CLI::App& app, int& exit_code) {
                                          "Structure knob placement: leaves | every_level");
   flags->split_opt =
       cmd->add_option("--split", flags->split, "Structure knob split: midpoint | sah");
+  cmd->add_option("--knob", flags->knobs,
+                  "Any structure knob as NAME=VALUE, repeatable (see `accelbench structures`)");
   cmd->add_option(
       "--max-memory", flags->max_memory,
       "Memory budget of the build, bytes with optional K/M/G suffix (default: 25% of RAM)");

@@ -8,6 +8,7 @@
 #include "integrators.h"
 
 #include "accel/accel.h"
+#include "accel/knob_table.h"
 
 #include <CLI/CLI.hpp>
 
@@ -30,6 +31,7 @@ struct SweepFlags {
   std::string config;
   std::vector<std::string> scenes, accel, placement, split;
   std::vector<int> max_depth, leaf_size;
+  std::vector<std::string> knobs;  ///< --knob NAME=V1[,V2...], any structure knob.
   int repetitions = -1, warmup = -1, threads = -1;
   std::string resolution, out, jsonl, shard_text = "0/1", max_memory;
   std::string validate_resolution, integrator;
@@ -105,6 +107,18 @@ SweepDefinition definition_from_flags(const SweepFlags& f) {
   override_knob_flag(d, "--leaf-size", "max_leaf_size", to_values(f.leaf_size));
   override_knob_flag(d, "--placement", "placement", to_values(f.placement));
   override_knob_flag(d, "--split", "split", to_values(f.split));
+  for (const std::string& text : f.knobs) {
+    const std::string name = accel::parse_knob_assignment(text).first;
+    std::vector<nlohmann::json> values;
+    const std::string list = text.substr(text.find('=') + 1);
+    for (std::size_t at = 0;;) {
+      const std::size_t comma = list.find(',', at);
+      values.push_back(accel::knob_value_from_text(list.substr(at, comma - at)));
+      if (comma == std::string::npos) break;
+      at = comma + 1;
+    }
+    override_knob_flag(d, "--knob", name, values);
+  }
   if (f.repetitions >= 0) d.repetitions = f.repetitions;
   if (f.warmup >= 0) d.warmup = f.warmup;
   if (f.threads >= 0) d.threads = f.threads;
@@ -186,6 +200,8 @@ void add_sweep_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--leaf-size", flags->leaf_size, "max_leaf_size values, e.g. 1,2,4,8")->delimiter(',');
   cmd->add_option("--placement", flags->placement, "placement values: leaves,every_level")->delimiter(',');
   cmd->add_option("--split", flags->split, "kd-tree split values: midpoint,sah")->delimiter(',');
+  cmd->add_option("--knob", flags->knobs,
+                  "Values of any structure knob, NAME=V1[,V2...], repeatable (see `accelbench structures`)");
   cmd->add_option("--repetitions", flags->repetitions, "Timed renders per configuration (median reported)")
       ->check(CLI::Range(1, 10000));
   cmd->add_option("--warmup", flags->warmup, "Untimed renders before the timed ones")->check(CLI::Range(0, 10000));

@@ -195,6 +195,16 @@ json knobs_to_json(const KnobValues& knobs) {
   return j;
 }
 
+/// The knob table's one-line error for a bad value, under the JSON pointer of the value.
+void check_knob_value(const std::string& structure, const std::string& knob, const json& value,
+                      const std::string& pointer) {
+  try {
+    accel::check_knob(structure, knob, value);
+  } catch (const accel::ConfigError& e) {
+    fail(pointer, e.what());
+  }
+}
+
 std::string join(const std::vector<std::string>& v) {
   std::string out;
   for (const auto& s : v) out += (out.empty() ? "" : ", ") + s;
@@ -239,18 +249,7 @@ SceneSpec parse_scene_item(const std::string& item) {
 }
 
 std::optional<std::vector<std::string>> structure_knobs(const std::string& structure) {
-  try {
-    const accel::AnyAccel a = accel::make_accel(structure, json::object(), {});
-    const json params = accel::params_of(a);  // items() must not outlive it
-    std::vector<std::string> knobs;
-    for (const auto& [key, value] : params.items()) {
-      (void)value;
-      knobs.push_back(key);
-    }
-    return knobs;
-  } catch (const std::exception&) {
-    return std::nullopt;
-  }
+  return accel::knob_names(structure);
 }
 
 SweepDefinition parse_sweep_definition(const json& j) {
@@ -331,33 +330,27 @@ SweepDefinition parse_sweep_definition(const json& j) {
     d.max_memory_bytes = std::uint64_t(
         get_integer(j["max_memory_bytes"], "/max_memory_bytes", 0, std::numeric_limits<long long>::max()));
 
-  // Catch misspelt knobs before a long run: a knob must belong to a structure that is swept.
+  // Catch misspelt knobs and bad values before a long run, with the knob table's own messages:
+  // a knob must belong to a structure that is swept, and every value must suit every swept
+  // structure that has the knob.
   std::set<std::string> all_knobs;
-  bool all_probed = true;
   for (std::size_t i = 0; i < d.structures.size(); ++i) {
     const auto& s = d.structures[i];
+    const std::string at = child("/structures", i);
     const auto knobs = structure_knobs(s.name);
-    if (!knobs) {
-      const auto names = accel::accel_names();
-      if (std::find(names.begin(), names.end(), s.name) == names.end() && s.name != "embree")
-        fail(child(child("/structures", i), "name"),
-             "unknown structure '" + s.name + "' (known: " + join(names) + ")");
-      all_probed = false;
-      continue;
-    }
+    if (!knobs) fail(child(at, "name"), "unknown structure '" + s.name + "' (known: " + join(accel::accel_names()) + ")");
     all_knobs.insert(knobs->begin(), knobs->end());
-    for (const auto& [k, v] : s.knobs) {
-      (void)v;
-      if (std::find(knobs->begin(), knobs->end(), k) == knobs->end())
-        fail(child(child("/structures", i), k),
-             s.name + " has no knob '" + k + "' (its knobs: " + (knobs->empty() ? "none" : join(*knobs)) + ")");
-    }
+    for (const auto& [k, values] : s.knobs)
+      for (std::size_t v = 0; v < values.size(); ++v)
+        check_knob_value(s.name, k, values[v], values.size() == 1 ? child(at, k) : child(child(at, k), v));
   }
-  if (all_probed)
-    for (const auto& [k, v] : d.knobs) {
-      (void)v;
-      if (!all_knobs.count(k)) fail(child("/knobs", k), "no structure in this sweep has the knob '" + k + "'");
-    }
+  for (const auto& [k, values] : d.knobs) {
+    if (!all_knobs.count(k)) fail(child("/knobs", k), "no structure in this sweep has the knob '" + k + "'");
+    for (const auto& s : d.structures)
+      if (const auto knobs = structure_knobs(s.name); std::find(knobs->begin(), knobs->end(), k) != knobs->end())
+        for (std::size_t v = 0; v < values.size(); ++v)
+          check_knob_value(s.name, k, values[v], values.size() == 1 ? child("/knobs", k) : child(child("/knobs", k), v));
+  }
 
   // Refuse a sweep too large to list before anything expands it (a typo such as a
   // million-value axis crossed with another).

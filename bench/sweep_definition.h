@@ -124,8 +124,8 @@ std::string config_key(const std::string& scene, const std::string& structure,
                        const nlohmann::json& params,
                        const nlohmann::json& integrator_params = nlohmann::json::object());
 
-/// Knob names a structure accepts, probed from the factory's params_of on zero primitives;
-/// nullopt when the structure cannot be built here (unknown name, or Embree not found).
+/// Knob names a structure accepts, from its knob table in the registry (also for a structure
+/// compiled out of this build); nullopt for an unknown name.
 std::optional<std::vector<std::string>> structure_knobs(const std::string& structure);
 
 /// Parses "WxH" (both > 0); throws SweepError naming `what`.

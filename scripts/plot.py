@@ -24,6 +24,7 @@ Usage: scripts/plot.py results/paper.json results/scaling.json [results/fronts-*
 """
 
 import argparse
+import itertools
 import json
 import math
 import os
@@ -43,19 +44,43 @@ PAPER_SCENES = ["spheres8000", "five"]
 SCALING_FAMILIES = ["grid", "random", "sphereflake"]
 FIGURES = ["paper_speedup", "heatmap_render_ms", "heatmap_nodes_per_ray", "scaling", "build_vs_trace"]
 
-# One colour per structure variant, the same in every figure.
-VARIANT_ORDER = [
-    "naive",
-    "octree (leaves)",
-    "octree (every_level)",
-    "kd-tree midpoint (leaves)",
-    "kd-tree midpoint (every_level)",
-    "kd-tree SAH",
-    "kd-tree SAH (every_level)",
-    "bvh",
-    "embree",
-]
-COLORS = dict(zip(VARIANT_ORDER, plt.get_cmap("tab10").colors))
+# The structure registry, generated from accel/registry.h by `accelbench structures --json` (a
+# test checks it is current): the structures, in display order, and their knobs. Knobs flagged
+# "variant" change the algorithm (a split rule, a placement); each of their values is drawn as a
+# variant of its own.
+REGISTRY_FILE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "structures.json")
+
+
+def load_registry(path=REGISTRY_FILE):
+    """The structures of the registry (selectors such as auto left out), in display order."""
+    with open(path, encoding="utf-8") as f:
+        return [e for e in json.load(f) if not e.get("selector")]
+
+
+REGISTRY = load_registry()
+
+
+def variant_knobs(entry):
+    return [k for k in entry["knobs"] if k.get("variant")]
+
+
+def variant_label(name, values):
+    """Display name of a structure with the values of its variant knobs, e.g. 'kdtree (leaves, sah)'."""
+    return f"{name} ({', '.join(values)})" if values else name
+
+
+def variant_order(registry):
+    """Every variant of every structure: the cross product of its variant knobs' values."""
+    out = []
+    for e in registry:
+        for values in itertools.product(*[k["choices"] for k in variant_knobs(e)]):
+            out.append(variant_label(e["name"], list(values)))
+    return out
+
+
+VARIANT_ORDER = variant_order(REGISTRY)
+_PALETTE = plt.get_cmap("tab20").colors
+COLORS = {v: _PALETTE[(2 * i) % 20 + (2 * i // 20) % 2] for i, v in enumerate(VARIANT_ORDER)}
 
 
 class PlotError(Exception):
@@ -84,17 +109,24 @@ def load_rows(paths):
 
 
 def variant(row):
-    """Display name of a row's structure with the knobs that change its algorithm."""
+    """Display name of a row's structure with the values of the knobs that change its algorithm."""
+    params = row.get("params") or row.get("requested") or {}
+    name = row.get("built") or row["structure"]
+    entry = next((e for e in REGISTRY if e["name"] == name), None)
+    if entry is None:
+        return name
+    return variant_label(name, [str(params.get(k["name"], k["default"])) for k in variant_knobs(entry)])
+
+
+def paper_structure(row):
+    """The paper's structure a row corresponds to: its octree, its midpoint kd-tree, or None."""
     params = row.get("params") or row.get("requested") or {}
     name = row.get("built") or row["structure"]
     if name == "octree":
-        return f"octree ({params.get('placement', 'leaves')})"
-    if name == "kdtree":
-        placement = params.get("placement", "leaves")
-        if params.get("split", "midpoint") == "sah":
-            return "kd-tree SAH" + (" (every_level)" if placement == "every_level" else "")
-        return f"kd-tree midpoint ({placement})"
-    return name
+        return "octree"
+    if name == "kdtree" and params.get("split", "midpoint") == "midpoint":
+        return "kdtree"
+    return None
 
 
 def order_key(v):
@@ -180,7 +212,7 @@ def plot_paper_speedup(rows, out_dir):
         # written once per structure.
         written = set()
         for xi, n in zip(x, names):
-            base = "octree" if n.startswith("octree") else "kdtree" if n.startswith("kd-tree midpoint") else None
+            base = paper_structure(best[n])
             if base and scene == "spheres8000":
                 (star,) = ax2.plot([xi], [PAPER_SPEEDUP[base]], "*", color="magenta", markersize=15,
                                    markeredgecolor="black")
@@ -495,11 +527,10 @@ def speedup_table(rows):
     for scene in PAPER_SCENES:
         for v, r in best_per_variant(rows, scene).items():
             paper = ""
-            if scene == "spheres8000" and v.startswith("octree"):
-                paper = "3.3"
-            elif scene == "spheres8000" and v.startswith("kd-tree midpoint"):
-                paper = "3.8"
-            elif scene == "five" and (v.startswith("octree") or v.startswith("kd-tree midpoint")):
+            base = paper_structure(r)
+            if scene == "spheres8000" and base:
+                paper = str(PAPER_SPEEDUP[base])
+            elif scene == "five" and base:
                 paper = "< 1"
             knobs = ", ".join(f"{k}={val}" for k, val in sorted(r.get("requested", {}).items())) or "defaults"
             speedup = f"{r.get('speedup', float('nan')):.3g}"

@@ -1,7 +1,7 @@
 // The cross-structure oracle: every structure the factory builds, under a grid of its knobs,
 // returns the same closest primitive, a bit-equal t and the same any-hit answer as naive, on
-// seeded adversarial scenes and rays. The grid is derived from each structure's own knobs
-// (params_of of its default build), so a structure added to the factory is tested here at once.
+// seeded adversarial scenes and rays. The grid is derived from each structure's knob table in
+// the registry, so a structure added to the registry is tested here at once, all its knobs too.
 
 #include "accel/accel.h"
 #include "tracer/geometry.h"
@@ -201,40 +201,32 @@ void add_interval_ties(std::vector<Ray>& rays, const std::vector<Hit>& hits) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// The knob grid of a structure, from the knobs its default build reports.
+// The knob grid of a structure, from its knob table in the registry: the probe values of the
+// knobs that shape the tree together (KnobTable `crossed`) crossed with each other, and every
+// other knob's probe values one at a time. No structure is special-cased here.
 
 std::vector<json> knob_grid(const std::string& name) {
-  const std::vector<Aabb> one{Aabb{Vec3(0.0f), Vec3(1.0f)}};
-  const json defaults = accel::params_of(accel::make_accel(name, json::object(), one));
+  const accel::StructureInfo* info = accel::find_structure(name);
   std::vector<json> grid{json::object()};
-  auto cross = [&grid](const char* key, const std::vector<json>& values) {
-    std::vector<json> out;
-    for (const json& g : grid)
-      for (const json& v : values) {
-        json x = g;
-        x[key] = v;
-        out.push_back(x);
-      }
-    grid = out;
-  };
-  if (defaults.contains("max_depth")) cross("max_depth", {0, 1, 2, 3, 5, 8, 12, 20});
-  if (defaults.contains("max_leaf_size")) cross("max_leaf_size", {1, 2, 4, 8, 16});
-  if (defaults.contains("placement")) cross("placement", {"leaves", "every_level"});
-  if (defaults.contains("split")) cross("split", {"midpoint", "sah"});
-  // `leaves` placement references a primitive from every leaf it overlaps: where primitives
-  // overlap, deep trees multiply cells without bound (the explosion the memory budget guards,
-  // tested by the structures' own tests). The oracle keeps those trees to depth 8.
-  std::erase_if(grid, [](const json& g) {
-    return g.value("placement", "") == "leaves" && g.value("max_depth", 0) > 8;
-  });
-  // Knobs that do not interact with the tree shape are varied one at a time.
-  if (defaults.contains("bins")) {
-    grid.push_back({{"bins", 8}, {"max_leaf_size", 1}});
-    grid.push_back({{"bins", 256}});
+  if (!info) return grid;
+  std::vector<json> singles;
+  for (const json& k : info->knob_table) {
+    const std::string key = k.at("name").get<std::string>();
+    const std::vector<json> probes = k.at("probes").get<std::vector<json>>();
+    if (k.at("crossed").get<bool>()) {
+      std::vector<json> out;
+      for (const json& g : grid)
+        for (const json& v : probes) {
+          json x = g;
+          x[key] = v;
+          out.push_back(x);
+        }
+      grid = out;
+    } else {
+      for (const json& v : probes) singles.push_back({{key, v}});
+    }
   }
-  if (defaults.contains("traversal_cost")) grid.push_back({{"traversal_cost", 0.1}});
-  if (defaults.contains("build_quality")) grid.push_back({{"build_quality", "medium"}});
-  if (defaults.contains("selected_by")) grid.push_back({{"naive_max_prims", 0}});
+  grid.insert(grid.end(), singles.begin(), singles.end());
   return grid;
 }
 

@@ -158,12 +158,13 @@ TEST(KdTree, RejectsBadKnobsWithOneLineNamingTheKey) {
             "kdtree: parameter 'max_leaf_size' must be in [1, 2147483647], got 0");
   EXPECT_EQ(error_of({{"max_depth", 65}}), "kdtree: parameter 'max_depth' must be in [0, 64], got 65");
   EXPECT_EQ(error_of({{"max_depth", -1}}), "kdtree: parameter 'max_depth' must be in [0, 64], got -1");
-  EXPECT_EQ(error_of({{"leafsize", 4}}), "kdtree: unknown parameter 'leafsize'");
+  EXPECT_EQ(error_of({{"leafsize", 4}}), "kdtree: unknown parameter 'leafsize' (its knobs: max_depth, max_leaf_size, placement, split, "
+            "traversal_cost, intersection_cost, empty_bonus)");
   EXPECT_EQ(error_of({{"max_depth", "8"}}), "kdtree: parameter 'max_depth' must be an integer, got \"8\"");
   EXPECT_EQ(error_of({{"split", "median"}}),
-            "kdtree: parameter 'split' must be one of midpoint|sah, got 'median'");
+            "kdtree: parameter 'split' must be one of midpoint|sah, got \"median\"");
   EXPECT_EQ(error_of({{"placement", "root"}}),
-            "kdtree: parameter 'placement' must be one of leaves|every_level, got 'root'");
+            "kdtree: parameter 'placement' must be one of leaves|every_level, got \"root\"");
   EXPECT_EQ(error_of({{"empty_bonus", 1.5}}), "kdtree: parameter 'empty_bonus' must be in [0.0, 1.0], got 1.5");
   KdTreeParams direct;
   direct.max_leaf_size = 0;

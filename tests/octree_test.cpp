@@ -163,7 +163,7 @@ TEST(Octree, RejectsBadKnobsWithOneLineNamingTheKey) {
             "octree: parameter 'max_leaf_size' must be in [1, 2147483647], got 0");
   EXPECT_EQ(error_of({{"max_depth", 65}}), "octree: parameter 'max_depth' must be in [0, 64], got 65");
   EXPECT_EQ(error_of({{"max_depth", 2.5}}), "octree: parameter 'max_depth' must be an integer, got 2.5");
-  EXPECT_EQ(error_of({{"split", "sah"}}), "octree: unknown parameter 'split'");
+  EXPECT_EQ(error_of({{"split", "sah"}}), "octree: unknown parameter 'split' (its knobs: max_depth, max_leaf_size, placement)");
   EXPECT_EQ(error_of({{"placement", 1}}),
             "octree: parameter 'placement' must be one of leaves|every_level, got 1");
   OctreeParams direct;

@@ -57,7 +57,7 @@ TEST(SweepDefinition, ErrorsNameTheJsonPointer) {
       {{{"structures", {"naive", "kdtre"}}}, "/structures/1/name: unknown structure 'kdtre'"},
       {{{"structures", {{{"name", "kdtree"}, {"max_depth", json::array()}}}}},
        "/structures/0/max_depth: must list at least one value"},
-      {{{"structures", {{{"name", "kdtree"}, {"leafsize", 4}}}}}, "/structures/0/leafsize: kdtree has no knob 'leafsize'"},
+      {{{"structures", {{{"name", "kdtree"}, {"leafsize", 4}}}}}, "/structures/0/leafsize: kdtree: unknown parameter 'leafsize' (its knobs: "},
       {{{"structures", {{{"name", "octree"}, {"max_depth", {4, {{"x", 1}}}}}}}},
        "/structures/0/max_depth/1: knob value must be a number, string or boolean"},
       {{{"knobs", {{"leafsize", {1, 2}}}}}, "/knobs/leafsize: no structure in this sweep has the knob 'leafsize'"},

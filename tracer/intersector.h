@@ -103,7 +103,7 @@ decltype(auto) with_intersector(const Geometry& geometry, const accel::AnyAccel&
         if (spheres_only) return fn(Intersector<KindSet::SpheresOnly, false, S>(geometry, structure));
         return fn(Intersector<KindSet::Mixed, false, S>(geometry, structure));
       },
-      any);
+      any.variant());
 }
 
 }  // namespace tracer

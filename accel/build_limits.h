@@ -1,0 +1,17 @@
+#pragma once
+// Resource limits every builder honours.
+
+#include <cstdint>
+
+namespace accel {
+
+/// Limits every builder honours; a build that would pass one throws ConfigError naming the knob.
+struct BuildLimits {
+  /// Most bytes a structure may allocate for nodes and references; 0 means 25% of physical RAM.
+  std::uint64_t max_memory_bytes = 0;
+};
+
+/// Resolves 0 to the default budget of 25% of physical memory.
+std::uint64_t memory_budget_bytes(const BuildLimits& limits);
+
+}  // namespace accel

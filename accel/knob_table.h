@@ -1,0 +1,414 @@
+#pragma once
+// Knob tables: one table per parameter struct lists every knob once (name, member, range, unit,
+// doc line); the defaults are read from the struct itself, so they are written once, in the
+// struct. The table drives JSON in and out, validation with one-line messages, the generic
+// `--knob name=value` command-line flag, and the generated knob reference in the docs.
+//
+// Not tied to acceleration structures: any parameter struct can have a table (the structures'
+// params, an integrator's, the tracer's accuracy knobs), and every library may use it since
+// every library depends on accel/.
+//
+//   struct MyParams {
+//     int depth = 5;  ///< ...
+//     static const accel::KnobTable<MyParams>& knobs() {
+//       static const accel::KnobTable<MyParams> t("mine", {
+//           accel::Knob<MyParams>::integer("depth", &MyParams::depth, 0, 64, "levels", "What it does.")});
+//       return t;
+//     }
+//   };
+//   MyParams p = MyParams::knobs().from_json(j);   // throws ConfigError, one line
+//   nlohmann::json out = MyParams::knobs().to_json(p);
+
+#include "config_error.h"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <concepts>
+#include <cstdlib>
+#include <cstdint>
+#include <functional>
+#include <limits>
+#include <span>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+namespace accel {
+
+/// The kind of value a knob holds.
+enum class KnobType : std::uint8_t {
+  Integer,  ///< A whole number in [min, max].
+  Number,   ///< A real number in [min, max]; integers are accepted.
+  Boolean,  ///< true or false.
+  Choice,   ///< One of a list of spellings (an enum class in the struct).
+};
+
+/// One knob of the parameter struct P.
+template <class P>
+class Knob {
+ public:
+  /// An integer member in [lo, hi].
+  template <std::integral T>
+    requires(!std::same_as<T, bool>)
+  static Knob integer(const char* name, T P::*member, long long lo, long long hi, const char* unit,
+                      const char* doc) {
+    Knob k(name, KnobType::Integer, unit, doc);
+    k.lo_ = double(lo);
+    k.hi_ = double(hi);
+    k.ilo_ = lo;
+    k.ihi_ = hi;
+    k.get_ = [member](const P& p) { return nlohmann::json(p.*member); };
+    k.set_ = [member](P& p, const nlohmann::json& v) { p.*member = T(v.get<long long>()); };
+    return k;
+  }
+
+  /// A floating-point member in [lo, hi].
+  template <std::floating_point T>
+  static Knob number(const char* name, T P::*member, double lo, double hi, const char* unit,
+                     const char* doc) {
+    Knob k(name, KnobType::Number, unit, doc);
+    k.lo_ = lo;
+    k.hi_ = hi;
+    k.get_ = [member](const P& p) { return nlohmann::json(shortest_double(p.*member)); };
+    k.set_ = [member](P& p, const nlohmann::json& v) { p.*member = T(v.get<double>()); };
+    return k;
+  }
+
+  /// A boolean member.
+  static Knob boolean(const char* name, bool P::*member, const char* doc) {
+    Knob k(name, KnobType::Boolean, "", doc);
+    k.get_ = [member](const P& p) { return nlohmann::json(p.*member); };
+    k.set_ = [member](P& p, const nlohmann::json& v) { p.*member = v.get<bool>(); };
+    return k;
+  }
+
+  /// An enum member, spelled as one of `names` (spelling, value), in display order.
+  template <class E>
+  static Knob choice(const char* name, E P::*member, std::vector<std::pair<std::string, E>> names,
+                     const char* doc) {
+    Knob k(name, KnobType::Choice, "", doc);
+    for (const auto& [spelling, e] : names) k.choices_.push_back(spelling);
+    k.get_ = [member, names](const P& p) {
+      for (const auto& [spelling, e] : names)
+        if (p.*member == e) return nlohmann::json(spelling);
+      return nlohmann::json(nullptr);  // a value outside the table; from_json rejects it
+    };
+    k.set_ = [member, names](P& p, const nlohmann::json& v) {
+      for (const auto& [spelling, e] : names)
+        if (v.get<std::string>() == spelling) p.*member = e;
+    };
+    return k;
+  }
+
+  /// Marks a knob that changes the algorithm rather than tuning it (a split rule, a placement):
+  /// benchmarks and plots show each of its values as a variant of its own.
+  Knob& variant() {
+    variant_ = true;
+    return *this;
+  }
+  /// Marks a knob that shapes the tree jointly with the other crossed knobs (depth and leaf
+  /// size): tests cross their probe values instead of varying them one at a time.
+  Knob& crossed() {
+    crossed_ = true;
+    return *this;
+  }
+  /// The values tests try for this knob. Without this: every choice and both booleans; the
+  /// range ends and the default for numbers.
+  Knob& probes(std::vector<nlohmann::json> values) {
+    probes_ = std::move(values);
+    return *this;
+  }
+
+  const std::string& name() const { return name_; }  ///< Spelling in JSON and on --knob.
+  KnobType type() const { return type_; }             ///< Kind of value.
+  const std::string& unit() const { return unit_; }   ///< Unit of the value ("" when none).
+  const std::string& doc() const { return doc_; }     ///< One line: what the knob does.
+  double min() const { return lo_; }                  ///< Smallest accepted number.
+  double max() const { return hi_; }                  ///< Largest accepted number.
+  /// Spellings of a Choice knob, in display order.
+  const std::vector<std::string>& choices() const { return choices_; }
+  bool is_variant() const { return variant_; }  ///< See variant().
+  bool is_crossed() const { return crossed_; }  ///< See crossed().
+
+  /// The knob's value in `p`, as JSON.
+  nlohmann::json get(const P& p) const { return get_(p); }
+  /// The default: the value in a default-constructed P.
+  nlohmann::json default_value() const { return get_(P{}); }
+
+  /// Checks `v` and stores it in `p`; throws ConfigError "<owner>: parameter '<name>' must
+  /// be ..., got <v>".
+  void set(P& p, const nlohmann::json& v, std::string_view owner) const {
+    check(v, owner);
+    set_(p, v);
+  }
+
+  /// Throws ConfigError when `v` is not an acceptable value of this knob.
+  void check(const nlohmann::json& v, std::string_view owner) const {
+    switch (type_) {
+      case KnobType::Integer: {
+        if (!v.is_number_integer()) fail_type(owner, "an integer", v);
+        const bool too_big = v.is_number_unsigned() &&
+                             v.get<std::uint64_t>() > std::uint64_t(std::numeric_limits<long long>::max());
+        const long long x = too_big ? 0 : v.get<long long>();
+        if (too_big || x < ilo_ || x > ihi_) fail_range(owner, v);
+        return;
+      }
+      case KnobType::Number: {
+        if (!v.is_number()) fail_type(owner, "a number", v);
+        const double x = v.get<double>();
+        if (!(x >= lo_ && x <= hi_)) fail_range(owner, v);
+        return;
+      }
+      case KnobType::Boolean:
+        if (!v.is_boolean()) fail_type(owner, "true or false", v);
+        return;
+      case KnobType::Choice: {
+        if (v.is_string())
+          for (const std::string& c : choices_)
+            if (v.get<std::string>() == c) return;
+        fail(owner, "must be one of " + choice_text() + ", got " + v.dump());
+      }
+    }
+  }
+
+  /// The accepted values in words: "[0, 64]", "true|false", "midpoint|sah".
+  std::string range_text() const {
+    std::string lo, hi;
+    switch (type_) {
+      case KnobType::Integer:
+        lo = std::to_string(ilo_);
+        hi = std::to_string(ihi_);
+        break;
+      case KnobType::Number:
+        lo = nlohmann::json(lo_).dump();
+        hi = nlohmann::json(hi_).dump();
+        break;
+      case KnobType::Boolean: return "true|false";
+      case KnobType::Choice: return choice_text();
+    }
+    std::string out = "[";
+    out.append(lo).append(", ").append(hi).append("]");
+    return out;
+  }
+  /// "integer", "number", "boolean" or "choice".
+  const char* type_name() const {
+    switch (type_) {
+      case KnobType::Integer: return "integer";
+      case KnobType::Number: return "number";
+      case KnobType::Boolean: return "boolean";
+      case KnobType::Choice: return "choice";
+    }
+    return "";
+  }
+
+  /// The values tests try (see probes()).
+  std::vector<nlohmann::json> probe_values() const {
+    if (!probes_.empty()) return probes_;
+    std::vector<nlohmann::json> out;
+    switch (type_) {
+      case KnobType::Integer: out = {ilo_, ihi_}; break;
+      case KnobType::Number: out = {lo_, hi_}; break;
+      case KnobType::Boolean: out = {false, true}; break;
+      case KnobType::Choice: out.assign(choices_.begin(), choices_.end()); break;
+    }
+    const nlohmann::json d = default_value();
+    if (std::find(out.begin(), out.end(), d) == out.end()) out.push_back(d);
+    return out;
+  }
+
+ private:
+  Knob(const char* name, KnobType type, const char* unit, const char* doc)
+      : name_(name), type_(type), unit_(unit), doc_(doc) {}
+
+  /// A float as the double of its shortest decimal spelling (0.2f as 0.2, not
+  /// 0.20000000298023224), which converts back to the same float.
+  template <std::floating_point T>
+  static double shortest_double(T x) {
+    if constexpr (std::is_same_v<T, float>) {
+      if (!std::isfinite(x)) return double(x);
+      char buf[32];
+      const auto r = std::to_chars(buf, buf + sizeof buf, x);
+      return std::strtod(std::string(buf, r.ptr).c_str(), nullptr);
+    } else {
+      return double(x);
+    }
+  }
+
+  std::string choice_text() const {
+    std::string s;
+    for (const std::string& c : choices_) {
+      if (!s.empty()) s += '|';
+      s += c;
+    }
+    return s;
+  }
+  [[noreturn]] void fail(std::string_view owner, const std::string& what) const {
+    throw ConfigError(std::string(owner) + ": parameter '" + name_ + "' " + what);
+  }
+  [[noreturn]] void fail_type(std::string_view owner, const char* want, const nlohmann::json& v) const {
+    fail(owner, std::string("must be ") + want + ", got " + v.dump());
+  }
+  [[noreturn]] void fail_range(std::string_view owner, const nlohmann::json& v) const {
+    fail(owner, "must be in " + range_text() + ", got " + v.dump());
+  }
+
+  std::string name_;
+  KnobType type_;
+  std::string unit_;
+  std::string doc_;
+  double lo_ = 0.0, hi_ = 0.0;
+  long long ilo_ = 0, ihi_ = 0;
+  std::vector<std::string> choices_;
+  bool variant_ = false;
+  bool crossed_ = false;
+  std::vector<nlohmann::json> probes_;
+  std::function<nlohmann::json(const P&)> get_;
+  std::function<void(P&, const nlohmann::json&)> set_;
+};
+
+/// Every knob of the parameter struct P, with the name of its owner (a structure, an
+/// integrator) that starts every error message.
+template <class P>
+class KnobTable {
+ public:
+  KnobTable(std::string owner, std::vector<Knob<P>> knobs) : owner_(std::move(owner)), knobs_(std::move(knobs)) {}
+
+  /// Who the knobs belong to; the first word of every error.
+  const std::string& owner() const { return owner_; }
+  /// The knobs, in display order.
+  std::span<const Knob<P>> knobs() const { return knobs_; }
+  /// The knob called `name`, or null.
+  const Knob<P>* find(std::string_view name) const {
+    for (const Knob<P>& k : knobs_)
+      if (k.name() == name) return &k;
+    return nullptr;
+  }
+  /// Knob names in display order.
+  std::vector<std::string> names() const {
+    std::vector<std::string> out;
+    for (const Knob<P>& k : knobs_) out.push_back(k.name());
+    return out;
+  }
+
+  /// Every knob of `p`, spelled out (an object; empty for a struct without knobs).
+  nlohmann::json to_json(const P& p) const {
+    nlohmann::json j = nlohmann::json::object();
+    for (const Knob<P>& k : knobs_) j[k.name()] = k.get(p);
+    return j;
+  }
+
+  /// Overwrites the knobs present in `j` (an object, or null for none) and leaves the others.
+  /// Unknown keys, wrong types and values out of range throw ConfigError, one line.
+  void read(const nlohmann::json& j, P& p) const {
+    if (j.is_null()) return;
+    if (!j.is_object()) throw ConfigError(owner_ + ": parameters must be a JSON object, got " + j.dump());
+    for (const auto& [key, value] : j.items()) {
+      const Knob<P>* k = find(key);
+      if (!k) throw ConfigError(owner_ + ": unknown parameter '" + key + "' (" + known_text() + ")");
+      k->set(p, value, owner_);
+    }
+  }
+
+  /// The defaults with the knobs of `j` applied (see read()).
+  P from_json(const nlohmann::json& j) const {
+    P p{};
+    read(j, p);
+    return p;
+  }
+
+  /// Throws the same ConfigError as from_json would for a struct filled in code.
+  void validate(const P& p) const {
+    for (const Knob<P>& k : knobs_) k.check(k.get(p), owner_);
+  }
+
+  /// "its knobs: a, b" or "it has none", for error messages.
+  std::string known_text() const {
+    if (knobs_.empty()) return "it has no knobs";
+    std::string s;
+    for (const Knob<P>& k : knobs_) {
+      if (!s.empty()) s += ", ";
+      s += k.name();
+    }
+    return "its knobs: " + s;
+  }
+
+  /// The table as data: per knob its name, type, default, range, unit, doc, flags and probes.
+  nlohmann::json describe() const {
+    nlohmann::json out = nlohmann::json::array();
+    for (const Knob<P>& k : knobs_) {
+      nlohmann::json d = {{"name", k.name()},       {"type", k.type_name()},      {"default", k.default_value()},
+                          {"range", k.range_text()}, {"unit", k.unit()},           {"doc", k.doc()},
+                          {"variant", k.is_variant()}, {"crossed", k.is_crossed()}, {"probes", k.probe_values()}};
+      if (k.type() == KnobType::Choice) d["choices"] = k.choices();
+      out.push_back(d);
+    }
+    return out;
+  }
+
+  /// The knob reference as a Markdown table (generated into the docs).
+  std::string markdown() const {
+    if (knobs_.empty()) return "No knobs.\n";
+    std::string s = "| knob | type | default | range | unit | what it does |\n| --- | --- | --- | --- | --- | --- |\n";
+    for (const Knob<P>& k : knobs_) {
+      // Choices as `a`, `b`: a '|' would end the Markdown cell.
+      std::string range;
+      if (k.type() == KnobType::Choice || k.type() == KnobType::Boolean) {
+        for (const std::string& c : k.type() == KnobType::Choice ? k.choices() : std::vector<std::string>{"true", "false"}) {
+          if (!range.empty()) range += ", ";
+          range.append("`").append(c).append("`");
+        }
+      } else {
+        range = k.range_text();
+      }
+      s.append("| `").append(k.name()).append("` | ").append(k.type_name()).append(" | `");
+      s.append(k.default_value().dump()).append("` | ").append(range).append(" | ");
+      s.append(k.unit().empty() ? "-" : k.unit()).append(" | ").append(k.doc()).append(" |\n");
+    }
+    return s;
+  }
+
+ private:
+  std::string owner_;
+  std::vector<Knob<P>> knobs_;
+};
+
+/// A parameter struct with a knob table (a static knobs() returning it).
+template <class P>
+concept HasKnobTable = requires {
+  { P::knobs() } -> std::same_as<const KnobTable<P>&>;
+};
+
+/// nlohmann::json conversions of every parameter struct in namespace accel, through its table
+/// (structs in other namespaces call P::knobs().to_json / from_json, or forward to these).
+template <HasKnobTable P>
+void to_json(nlohmann::json& j, const P& p) {
+  j = P::knobs().to_json(p);
+}
+template <HasKnobTable P>
+void from_json(const nlohmann::json& j, P& p) {
+  p = P::knobs().from_json(j);
+}
+
+/// The JSON value of a knob given as text on the command line: a number or true/false when it
+/// reads as one, else the text as a string. The knob table then checks it exactly as it checks
+/// JSON, so `--knob` and JSON files give the same errors.
+inline nlohmann::json knob_value_from_text(std::string_view text) {
+  const nlohmann::json v = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
+  if (v.is_number() || v.is_boolean()) return v;
+  return std::string(text);
+}
+
+/// Splits "NAME=VALUE" (the argument of --knob); throws ConfigError naming `flag` otherwise.
+inline std::pair<std::string, nlohmann::json> parse_knob_assignment(std::string_view text,
+                                                                   std::string_view flag = "--knob") {
+  const auto eq = text.find('=');
+  if (eq == std::string_view::npos || eq == 0)
+    throw ConfigError(std::string(flag) + ": expected NAME=VALUE, got '" + std::string(text) + "'");
+  return {std::string(text.substr(0, eq)), knob_value_from_text(text.substr(eq + 1))};
+}
+
+}  // namespace accel

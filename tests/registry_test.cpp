@@ -1,0 +1,128 @@
+// The structure registry (accel/registry.h) is the only list of structures: every list derived
+// from it (the factory's names, the command line, the sweeps' knob discovery, the benchmarks,
+// the plot script's registry file and the knob reference in the docs) holds every entry.
+
+#include "accel/accel.h"
+#include "bench/sweep_definition.h"
+
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <fstream>
+#include <string>
+
+namespace {
+
+using nlohmann::json;
+
+struct ProcessRun {
+  int status = -1;
+  std::string output;
+};
+
+ProcessRun run(const std::string& cmd) {
+  ProcessRun r;
+  FILE* pipe = popen((cmd + " 2>&1").c_str(), "r");
+  if (!pipe) return r;
+  std::array<char, 4096> buf;
+  while (std::fgets(buf.data(), int(buf.size()), pipe)) r.output += buf.data();
+  const int raw = pclose(pipe);
+  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  return r;
+}
+
+std::string read(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+std::vector<std::string> registry_names() {
+  std::vector<std::string> out;
+  accel::for_each_entry([&]<class E>() { out.push_back(E::kName); });
+  return out;
+}
+
+TEST(Registry, FactoryNamesAreTheRegistry) {
+  const std::vector<std::string> names = registry_names();
+  EXPECT_EQ(accel::accel_names(), names);
+  ASSERT_GE(names.size(), 6u);
+  for (const std::string& n : names) {
+    const accel::StructureInfo* s = accel::find_structure(n);
+    ASSERT_NE(s, nullptr) << n;
+    if (!s->built) {
+      EXPECT_FALSE(s->missing.empty()) << n;
+      continue;
+    }
+    // Every built entry builds; a structure reports its name and every knob, a selector says
+    // that it chose.
+    const accel::AnyAccel a = accel::make_accel(n, json::object(), std::vector<accel::Aabb>{});
+    if (s->selector) {
+      EXPECT_EQ(a.selected_by.at("structure"), n);
+    } else {
+      EXPECT_EQ(accel::name_of(a), n);
+      EXPECT_EQ(accel::params_of(a).size(), s->knobs.size()) << n;
+    }
+  }
+}
+
+TEST(Registry, CommandLineListsEveryStructure) {
+  const ProcessRun help = run(std::string(ACCELBENCH_CLI) + " render --help");
+  const ProcessRun list = run(std::string(ACCELBENCH_CLI) + " structures");
+  ASSERT_EQ(list.status, 0) << list.output;
+  for (const std::string& n : registry_names()) {
+    EXPECT_NE(help.output.find(n), std::string::npos) << n << " missing from render --help";
+    EXPECT_NE(list.output.find("\n" + n + " "), std::string::npos) << n << " missing from `structures`";
+  }
+}
+
+TEST(Registry, SweepsKnowEveryStructureAndItsKnobs) {
+  for (const accel::StructureInfo& s : accel::structures()) {
+    EXPECT_EQ(bench::structure_knobs(s.name), s.knobs) << s.name;
+    json entry = {{"name", s.name}};
+    for (const json& k : s.knob_table) entry[k.at("name").get<std::string>()] = k.at("default");
+    EXPECT_NO_THROW(bench::parse_sweep_definition({{"scenes", {"five"}}, {"structures", {entry}}})) << s.name;
+  }
+}
+
+TEST(Registry, BenchmarksCoverEveryBuiltStructure) {
+#ifdef ACCELBENCH_BENCH_TRACE
+  const ProcessRun list = run(std::string(ACCELBENCH_BENCH_TRACE) + " --benchmark_list_tests=true");
+  ASSERT_EQ(list.status, 0) << list.output;
+  for (const accel::StructureInfo& s : accel::structures()) {
+    if (!s.built) continue;
+    for (const char* set : {"coherent", "incoherent"})
+      EXPECT_NE(list.output.find("Trace/spheres8000/" + std::string(set) + "/" + s.name + "\n"), std::string::npos)
+          << s.name;
+  }
+#else
+  GTEST_SKIP() << "bench_trace is not built (ACCELBENCH_BENCHMARKS=OFF)";
+#endif
+}
+
+TEST(Registry, PlotScriptReadsTheCurrentRegistryFile) {
+  // scripts/structures.json is `accelbench structures --json`, committed for scripts/plot.py.
+  const json committed = json::parse(read(ACCELBENCH_SOURCE_DIR "/scripts/structures.json"));
+  EXPECT_EQ(committed, accel::registry_json())
+      << "regenerate it: build/bin/accelbench structures --json > scripts/structures.json";
+  // Every structure (not selector) gets a colour and a place in plot.py's order.
+  const ProcessRun py = run(std::string(ACCELBENCH_PYTHON) + " -c \"import sys; sys.path.insert(0, '" ACCELBENCH_SOURCE_DIR
+                     "/scripts'); import plot; print('\\n'.join(plot.VARIANT_ORDER)); "
+                     "print('\\n'.join(plot.variant({'structure': s['name']}) for s in plot.REGISTRY))\"");
+  ASSERT_EQ(py.status, 0) << py.output;
+  for (const accel::StructureInfo& s : accel::structures()) {
+    if (s.selector) continue;
+    EXPECT_NE(py.output.find(s.name), std::string::npos) << s.name << " missing from plot.py's variants";
+  }
+}
+
+TEST(Registry, DocsHoldTheGeneratedKnobReference) {
+  const std::string doc = read(ACCELBENCH_SOURCE_DIR "/docs/structures.md");
+  EXPECT_NE(doc.find(accel::knob_reference_markdown()), std::string::npos)
+      << "regenerate the knob reference in docs/structures.md: build/bin/accelbench structures --markdown";
+  for (const std::string& n : registry_names()) EXPECT_NE(doc.find("| `" + n + "` |"), std::string::npos) << n;
+}
+
+}  // namespace
