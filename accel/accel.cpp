@@ -84,6 +84,19 @@ void check_knob(std::string_view name, const std::string& knob, const nlohmann::
     throw ConfigError("unknown structure '" + std::string(name) + "' (valid: " + valid_names() + ")");
 }
 
+void check_knob_name(std::string_view name, const std::string& knob) {
+  bool found = false;
+  for_each_entry([&]<class E>() {
+    if (found || name != E::kName) return;
+    found = true;
+    const auto& table = E::Params::knobs();
+    if (!table.find(knob))
+      throw ConfigError(std::string(E::kName) + ": unknown parameter '" + knob + "' (" + table.known_text() + ")");
+  });
+  if (!found)
+    throw ConfigError("unknown structure '" + std::string(name) + "' (valid: " + valid_names() + ")");
+}
+
 AnyAccel make_accel(std::string_view name, const nlohmann::json& params,
                     std::span<const Aabb> boxes, const BuildLimits& limits) {
   std::optional<AnyAccel> built;

@@ -65,6 +65,10 @@ std::optional<std::vector<std::string>> knob_names(std::string_view name);
 /// (unknown structure, unknown knob, wrong type, out of range); returns when it is acceptable.
 void check_knob(std::string_view name, const std::string& knob, const nlohmann::json& value);
 
+/// Throws the ConfigError make_accel would throw when structure `name` has no knob `knob`
+/// ("<name>: unknown parameter '<knob>' (its knobs: ...)"), or for an unknown structure.
+void check_knob_name(std::string_view name, const std::string& knob);
+
 /// Builds the structure `name` over `boxes`. `params` holds that structure's knobs (unknown keys
 /// are rejected). Throws ConfigError.
 AnyAccel make_accel(std::string_view name, const nlohmann::json& params,

@@ -70,7 +70,8 @@ TEST(Registry, FactoryNamesAreTheRegistry) {
 
 TEST(Registry, CommandLineListsEveryStructure) {
   const ProcessRun help = run(std::string(ACCELBENCH_CLI) + " render --help");
-  const ProcessRun list = run(std::string(ACCELBENCH_CLI) + " structures");
+  ProcessRun list = run(std::string(ACCELBENCH_CLI) + " structures");
+  list.output = "\n" + list.output;
   ASSERT_EQ(list.status, 0) << list.output;
   for (const std::string& n : registry_names()) {
     EXPECT_NE(help.output.find(n), std::string::npos) << n << " missing from render --help";
