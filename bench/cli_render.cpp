@@ -44,6 +44,8 @@ struct RenderFlags {
   std::vector<std::string> knobs;  ///< --knob NAME=VALUE, any knob of the structure.
   std::string integrator;  ///< Integrator name (bench/integrators.h); "" = whitted.
   bool spd = false;        ///< Shorthand for --integrator spd.
+  /// Integrator knob precision: float, or double (the naive reference in double); "" = float.
+  std::string precision;
   /// auto | mixed: primitive dispatch (mixed measures the fast path).
   std::string dispatch = "auto";
   CLI::Option* max_depth_opt = nullptr;
@@ -123,6 +125,9 @@ int run_render(const RenderFlags& f) {
   }
   const nlohmann::json params = knob_params(f);
   const tracer::Integrator& integrator = chosen_integrator(f);
+  nlohmann::json integrator_knobs = nlohmann::json::object();
+  if (!f.precision.empty()) integrator_knobs["precision"] = f.precision;
+  integrator.params(integrator_knobs);  // a knob the integrator lacks fails before any work
 
   tracer::Scene scene = tracer::load_scene_file(f.scene);
   scene.geometry.force_mixed = f.dispatch == "mixed";
@@ -153,7 +158,11 @@ int run_render(const RenderFlags& f) {
 
   std::printf("integrator %s: %s\n", std::string(integrator.name).c_str(),
               std::string(integrator.description).c_str());
-  const tracer::RenderResult result = tracer::render(scene, structure, options, integrator);
+  if (f.precision == "double")
+    std::printf("precision double: the naive loop over every primitive in double; the structure "
+                "is not used\n");
+  const tracer::RenderResult result =
+      tracer::render(scene, structure, options, integrator, integrator_knobs);
   const tracer::RayCounts& rays = result.rays;
   const double seconds = result.render_ms / 1e3;
   const double rays_per_s = seconds > 0 ? double(rays.total()) / seconds : 0.0;
@@ -175,7 +184,8 @@ int run_render(const RenderFlags& f) {
     // The counting pass: same image, with traversal counters on; never the timed one.
     tracer::RenderOptions counting = options;
     counting.count_traversal = true;
-    const tracer::RenderResult counted = tracer::render(scene, structure, counting, integrator);
+    const tracer::RenderResult counted =
+        tracer::render(scene, structure, counting, integrator, integrator_knobs);
     if (counted.image.content_hash() != result.image.content_hash() ||
         !(counted.rays == result.rays))
       throw std::runtime_error("the counting pass rendered a different image than the timed pass");
@@ -184,6 +194,7 @@ int run_render(const RenderFlags& f) {
         {"resolution", {width, height}},
         {"samples_per_pixel", scene.camera.samples_per_pixel},
         {"integrator", integrator.name},
+        {"integrator_params", integrator.params(integrator_knobs)},
         {"dispatch",
          scene.geometry.kind_set() == tracer::KindSet::SpheresOnly ? "spheres_only" : "mixed"},
         {"threads", threads},
@@ -249,6 +260,10 @@ void add_render_command(CLI::App& app, int& exit_code) {
   cmd->add_flag("--spd", flags->spd,
                 "Shorthand for --integrator spd: the SPD test rules (rays at pixel corners, tree "
                 "depth 5, NFF shading; for .nff scenes)");
+  cmd->add_option("--precision", flags->precision,
+                  "Integrator knob precision: float (default) | double (the naive loop in double, "
+                  "the float renderer's reference; the structure is not used)")
+      ->check(CLI::IsMember({"float", "double"}));
   cmd->add_option(
          "--dispatch", flags->dispatch,
          "Primitive dispatch: auto (sphere-only scenes take the spheres-only path) | mixed")

@@ -27,7 +27,10 @@ using LD = long double;
 struct LV {
   LD x, y, z;
 };
-LV lv(const Vec3& v) { return {LD(v.x), LD(v.y), LD(v.z)}; }
+template <class T>
+LV lv(const tracer::Vec3T<T>& v) {
+  return {LD(v.x), LD(v.y), LD(v.z)};
+}
 LV operator-(const LV& a, const LV& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
 LV operator*(LD s, const LV& a) { return {s * a.x, s * a.y, s * a.z}; }
 LD dot(const LV& a, const LV& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
@@ -91,7 +94,13 @@ Setup make_setup(Kind kind, float magnitude, Rng& rng) {
       g.spheres.push_back({s.centre, s.size, 0});
       break;
     case Kind::Plane: {
-      const Vec3 n = rng.unit();
+      // Every fourth plane axis-aligned (a floor), whose test is exact near the plane.
+      Vec3 n = rng.unit();
+      if (rng.uniform(0.0f, 1.0f) < 0.25f) {
+        const int axis = int(rng.uniform(0.0f, 2.999f));
+        n = Vec3(0.0f);
+        n[axis] = rng.uniform(-1.0f, 1.0f) < 0.0f ? -1.0f : 1.0f;
+      }
       g.planes.push_back({n, glm::dot(n, s.centre), 0});
       break;
     }
@@ -146,22 +155,24 @@ Vec3 aim_point(const Setup& s, Rng& rng) {
   return s.centre + s.size * rng.in_cube(1.0f);
 }
 
-/// The primitive's hit, or not found.
-Hit first_hit(const tracer::Geometry& g, const Ray& ray) {
-  Hit hit;
+/// The primitive's hit, or not found, in the ray's scalar type.
+template <class R>
+tracer::HitT<tracer::ScalarOf<R>> first_hit(const tracer::Geometry& g, const R& ray) {
+  tracer::HitT<tracer::ScalarOf<R>> hit;
   if (!g.planes.empty()) {
-    const float t = tracer::intersect(g.planes[0], ray);
+    const auto t = tracer::intersect(g.planes[0], ray);
     if (t < ray.tmax) hit = {t, Hit::kPlaneBit};
     return hit;
   }
-  const float t = g.intersect_bounded(0, ray);
+  const auto t = g.intersect_bounded(0, ray);
   if (t < ray.tmax) hit = {t, 0};
   return hit;
 }
 
 /// Signed distance (long double) of x from the exact surface, positive on the side the
 /// primitive's geometric normal points to; `axis`/`face` pick the hit face of a box.
-LD signed_distance(const tracer::Geometry& g, const Vec3& xf, int axis, float face_sign) {
+template <class T>
+LD signed_distance(const tracer::Geometry& g, const tracer::Vec3T<T>& xf, int axis, T face_sign) {
   const LV x = lv(xf);
   if (!g.planes.empty()) {
     const tracer::Plane& pl = g.planes[0];
@@ -201,26 +212,32 @@ struct Tally {
   std::string first_failure;
 };
 
+/// Random rays at the primitives of `kind` at `magnitude`, traced and checked in scalar type T
+/// (the rays are drawn in float, then taken exactly into T).
+template <class T>
 void check_kind(Kind kind, float magnitude, int primitives, int rays_each, Tally& tally) {
+  using V = tracer::Vec3T<T>;
   Rng rng(unsigned(1000 * int(kind)) + unsigned(std::log10(magnitude) + 10.0f));
   for (int i = 0; i < primitives; ++i) {
     const Setup s = make_setup(kind, magnitude, rng);
     for (int j = 0; j < rays_each; ++j) {
-      Ray ray;
+      tracer::RayT<T> ray;
       const float dist = s.size * std::pow(10.0f, rng.uniform(0.3f, 3.0f));
-      ray.org = s.centre + dist * rng.unit();
+      const Vec3 org = s.centre + dist * rng.unit();
       const Vec3 target = aim_point(s, rng);
-      ray.dir = glm::normalize(target - ray.org);
-      if (!(glm::length(ray.dir) > 0.5f)) continue;
-      const Hit hit = first_hit(s.g, ray);
+      ray.org = V(org);
+      ray.dir = glm::normalize(V(target) - V(org));
+      if (!(glm::length(ray.dir) > T(0.5))) continue;
+      const auto hit = first_hit(s.g, ray);
       if (!hit.found()) continue;
       ++tally.hits;
-      const tracer::SurfacePoint sp = tracer::surface_point(s.g, ray, hit);
+      const tracer::SurfacePointT<T> sp = tracer::surface_point(s.g, ray, hit);
       int axis = 0;
-      float face_sign = 1.0f;
+      T face_sign = T(1);
       for (int a = 0; a < 3; ++a)
-        if (sp.n_geo[a] != 0.0f) axis = a, face_sign = sp.n_geo[a];
-      const std::string where = std::string(kind_name(kind)) + " at magnitude " +
+        if (sp.n_geo[a] != T(0)) axis = a, face_sign = sp.n_geo[a];
+      const std::string where = std::string(sizeof(T) == 4 ? "float " : "double ") +
+                                kind_name(kind) + " at magnitude " +
                                 std::to_string(magnitude) + ", primitive " + std::to_string(i) +
                                 ", ray " + std::to_string(j);
       // The bound along the normal covers the true distance from the surface.
@@ -231,8 +248,8 @@ void check_kind(Kind kind, float magnitude, int primitives, int rays_each, Tally
           tally.first_failure = where + ": distance " + sci(d) + " > bound " + sci(along);
       }
       // Both offset origins lie strictly on their side of the exact surface.
-      const Vec3 out = tracer::offset_ray_origin(sp, sp.n_geo);
-      const Vec3 in = tracer::offset_ray_origin(sp, -sp.n_geo);
+      const V out = tracer::offset_ray_origin(sp, sp.n_geo);
+      const V in = tracer::offset_ray_origin(sp, -sp.n_geo);
       if (!(signed_distance(s.g, out, axis, face_sign) > 0) ||
           !(signed_distance(s.g, in, axis, face_sign) < 0)) {
         if (tally.side_violations++ == 0 && tally.first_failure.empty())
@@ -242,13 +259,13 @@ void check_kind(Kind kind, float magnitude, int primitives, int rays_each, Tally
       // the mirror direction back to the arriving side, and the straight-on direction. (Not the
       // straight-on ray into a box: entering near an edge, it leaves through the next face at
       // any distance.)
-      const float near = 1e-3f * s.size;
-      const Vec3 n_in = glm::dot(ray.dir, sp.n_geo) < 0.0f ? sp.n_geo : -sp.n_geo;
-      const Vec3 mirror = ray.dir - 2.0f * glm::dot(ray.dir, n_in) * n_in;
+      const T near = T(1e-3f * s.size);
+      const V n_in = glm::dot(ray.dir, sp.n_geo) < T(0) ? sp.n_geo : -sp.n_geo;
+      const V mirror = ray.dir - T(2) * glm::dot(ray.dir, n_in) * n_in;
       for (int k = 0; k < (kind == Kind::Box ? 1 : 2); ++k) {
-        const Vec3 dir = k == 0 ? mirror : ray.dir;
-        const Ray leave = tracer::spawn_ray(sp, dir);
-        const Hit again = first_hit(s.g, leave);
+        const V dir = k == 0 ? mirror : ray.dir;
+        const tracer::RayT<T> leave = tracer::spawn_ray(sp, dir);
+        const auto again = first_hit(s.g, leave);
         if (again.found() && again.t * glm::length(dir) < near) {
           if (tally.rehits++ == 0 && tally.first_failure.empty())
             tally.first_failure = where + (k == 0 ? ": mirror" : ": straight") +
@@ -261,16 +278,20 @@ void check_kind(Kind kind, float magnitude, int primitives, int rays_each, Tally
 
 class ErrorBounds : public ::testing::TestWithParam<Kind> {};
 
-TEST_P(ErrorBounds, HoldAtEveryMagnitude) {
+template <class T>
+void expect_bounds_hold(Kind kind) {
   for (const float magnitude : {1e-6f, 1e-4f, 1e-2f, 1.0f, 1e2f, 1e4f, 1e6f}) {
     Tally tally;
-    check_kind(GetParam(), magnitude, 50, 100, tally);
-    EXPECT_GT(tally.hits, 1000) << kind_name(GetParam()) << " at " << magnitude;
+    check_kind<T>(kind, magnitude, 50, 100, tally);
+    EXPECT_GT(tally.hits, 1000) << kind_name(kind) << " at " << magnitude;
     EXPECT_EQ(tally.bound_violations, 0) << tally.first_failure;
     EXPECT_EQ(tally.side_violations, 0) << tally.first_failure;
     EXPECT_EQ(tally.rehits, 0) << tally.first_failure;
   }
 }
+
+TEST_P(ErrorBounds, HoldAtEveryMagnitudeInFloat) { expect_bounds_hold<float>(GetParam()); }
+TEST_P(ErrorBounds, HoldAtEveryMagnitudeInDouble) { expect_bounds_hold<double>(GetParam()); }
 
 INSTANTIATE_TEST_SUITE_P(EveryKind, ErrorBounds,
                          ::testing::Values(Kind::Sphere, Kind::Plane, Kind::Triangle, Kind::Box,

@@ -96,7 +96,7 @@ TEST(WhittedParams, SeedsGiveIndependentJitterAndStayDeterministic) {
 
 TEST(WhittedParams, ParamsSpellEveryKnob) {
   const json p = tracer::whitted_integrator().params(json::object());
-  EXPECT_EQ(p, json({{"max_depth", 0}, {"min_weight", -1.0}, {"spp", 0}, {"seed", 0}}));
+  EXPECT_EQ(p, json({{"max_depth", 0}, {"min_weight", -1.0}, {"spp", 0}, {"seed", 0}, {"precision", "float"}}));
   EXPECT_EQ(tracer::whitted_integrator().params({{"max_depth", 7}})["max_depth"], 7);
 }
 
@@ -117,6 +117,7 @@ TEST(WhittedParams, BadKnobsNameThemselves) {
   EXPECT_NE(message({{"min_weight", "low"}}).find("'min_weight'"), std::string::npos);
   EXPECT_NE(message({{"spp", 70000}}).find("'spp'"), std::string::npos);
   EXPECT_NE(message({{"seed", -2}}).find("'seed'"), std::string::npos);
+  EXPECT_NE(message({{"precision", "half"}}).find("'precision'"), std::string::npos);
   EXPECT_NE(message(json::array()).find("JSON object"), std::string::npos);
   for (const json& bad : {json{{"max_depth", 1001}}, json{{"seed", -1}}})
     EXPECT_EQ(message(bad).find('\n'), std::string::npos);

@@ -1,10 +1,13 @@
 #pragma once
 // Axis-aligned box primitive: a solid, closed surface.
 
+#include "scalar.h"
+
 #include "accel/ray_setup.h"
 
 #include <cmath>
 #include <cstdint>
+#include <utility>
 
 namespace tracer {
 
@@ -17,22 +20,27 @@ struct Box {
   std::uint32_t material = 0;  ///< Index into Scene::materials.
 };
 
-/// Nearest surface crossing t > tmin: the entry distance, or the exit distance from inside.
-inline float intersect(const Box& box, const Ray& ray) {
-  float t_enter = -accel::kInfinity, t_exit = accel::kInfinity;
+/// Nearest surface crossing t > tmin: the entry distance, or the exit distance from inside, in
+/// the ray's scalar type.
+template <class T>
+T box_distance(const Box& box, const RayT<T>& ray) {
+  T t_enter = -kInfinityOf<T>, t_exit = kInfinityOf<T>;
   for (int a = 0; a < 3; ++a) {
-    const float inv = 1.0f / ray.dir[a];
-    float t_near = (box.lo[a] - ray.org[a]) * inv;
-    float t_far = (box.hi[a] - ray.org[a]) * inv;
+    const T inv = T(1) / ray.dir[a];
+    T t_near = (T(box.lo[a]) - ray.org[a]) * inv;
+    T t_far = (T(box.hi[a]) - ray.org[a]) * inv;
     if (t_near > t_far) std::swap(t_near, t_far);
     t_enter = t_near > t_enter ? t_near : t_enter;
     t_exit = t_far < t_exit ? t_far : t_exit;
   }
-  if (!(t_enter <= t_exit)) return accel::kInfinity;
+  if (!(t_enter <= t_exit)) return kInfinityOf<T>;
   if (t_enter > ray.tmin) return t_enter;
   if (t_exit > ray.tmin) return t_exit;
-  return accel::kInfinity;
+  return kInfinityOf<T>;
 }
+
+inline float intersect(const Box& box, const Ray& ray) { return box_distance<float>(box, ray); }
+inline double intersect(const Box& box, const RayD& ray) { return box_distance<double>(box, ray); }
 
 inline accel::Aabb bounds(const Box& box) { return {box.lo, box.hi}; }
 

@@ -6,6 +6,8 @@
 // solved in double precision from the ray's components perpendicular to the axis, so rays along
 // the axis and grazing rays stay exact (a float solve loses the root near a tangent).
 
+#include "scalar.h"
+
 #include "accel/geometry.h"
 
 #include <cmath>
@@ -44,8 +46,10 @@ inline Cone make_cone(const Vec3& base, float base_radius, const Vec3& apex, flo
 
 inline Vec3 apex_of(const Cone& c) { return c.base + c.height * c.axis; }
 
-/// Nearest t > ray.tmin where the ray meets the lateral surface, or +inf.
-inline float intersect(const Cone& c, const Ray& ray) {
+/// Nearest t > ray.tmin where the ray meets the lateral surface, or +inf, in the ray's scalar
+/// type (the solve is in double for both).
+template <class T>
+T cone_distance(const Cone& c, const RayT<T>& ray) {
   using glm::dvec3;
   const dvec3 w(c.axis);
   const dvec3 o = dvec3(ray.org) - dvec3(c.base);
@@ -63,20 +67,23 @@ inline float intersect(const Cone& c, const Ray& ray) {
   const double b = glm::dot(op, dp) - k * dz * ro;
   const double cc = glm::dot(op, op) - ro * ro;
   const double disc = b * b - a * cc;
-  if (!(disc >= 0.0)) return accel::kInfinity;
+  if (!(disc >= 0.0)) return kInfinityOf<T>;
   // Stable roots; a == 0 (ray parallel to a generator line) leaves the single root cc / q.
   const double q = -(b + std::copysign(std::sqrt(disc), b));
   double t0 = q / a;
   double t1 = cc / q;
   if (t0 > t1) std::swap(t0, t1);
   for (const double t : {t0, t1}) {
-    const float tf = float(t);
-    if (!(tf > ray.tmin) || !(tf < accel::kInfinity)) continue;
+    const T tt = T(t);
+    if (!(tt > ray.tmin) || !(tt < kInfinityOf<T>)) continue;
     const double z = oz + t * dz;
-    if (z >= 0.0 && z <= h) return tf;
+    if (z >= 0.0 && z <= h) return tt;
   }
-  return accel::kInfinity;
+  return kInfinityOf<T>;
 }
+
+inline float intersect(const Cone& c, const Ray& ray) { return cone_distance<float>(c, ray); }
+inline double intersect(const Cone& c, const RayD& ray) { return cone_distance<double>(c, ray); }
 
 /// Tight box: each end is a disc of radius r perpendicular to the axis, whose extent along
 /// world axis i is r * sqrt(1 - axis[i]^2).

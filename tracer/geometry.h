@@ -67,10 +67,11 @@ struct Geometry {
   /// so that it contains the exact primitive at any coordinate.
   std::vector<accel::Aabb> primitive_bounds() const;
 
-  /// Distance t > ray.tmin to bounded primitive `id`, or +inf. Pure function of (id, org, dir,
-  /// tmin), so every structure gets bit-identical distances.
-  template <KindSet Kinds = KindSet::Mixed>
-  float intersect_bounded(std::uint32_t id, const Ray& ray) const {
+  /// Distance t > ray.tmin to bounded primitive `id`, or +inf, in the ray's scalar type (Ray:
+  /// float, RayD: double). Pure function of (id, org, dir, tmin), so every structure gets
+  /// bit-identical distances.
+  template <KindSet Kinds = KindSet::Mixed, class R = Ray>
+  ScalarOf<R> intersect_bounded(std::uint32_t id, const R& ray) const {
     if constexpr (Kinds == KindSet::SpheresOnly) {
       return intersect(spheres[id], ray);
     } else {

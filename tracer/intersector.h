@@ -16,22 +16,26 @@
 
 namespace tracer {
 
-/// Result of a closest-hit query.
-struct Hit {
+/// Result of a closest-hit query, in the scalar type T of the ray.
+template <class T>
+struct HitT {
   static constexpr std::uint32_t kNone = 0xffffffffu;
   static constexpr std::uint32_t kPlaneBit = 0x80000000u;  ///< Set on ids of unbounded planes.
 
-  float t = accel::kInfinity;   ///< Hit distance along the ray, in units of |dir|.
+  T t = kInfinityOf<T>;         ///< Hit distance along the ray, in units of |dir|.
   std::uint32_t prim = kNone;   ///< Global bounded id, or kPlaneBit | plane index.
 
   bool found() const { return prim != kNone; }
   bool is_plane() const { return found() && (prim & kPlaneBit) != 0; }
 };
+using Hit = HitT<float>;
+using HitD = HitT<double>;
 
 template <KindSet Kinds, bool Count, class Structure>
 class Intersector {
  public:
   static constexpr bool kCounting = Count;
+  using Scalar = float;  ///< The scalar type of its rays and hits.
 
   Intersector(const Geometry& geometry, const Structure& structure,
               accel::TraversalCounters* counters = nullptr)

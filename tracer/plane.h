@@ -1,6 +1,8 @@
 #pragma once
 // Infinite plane: unbounded, so it is tested outside the acceleration structures.
 
+#include "scalar.h"
+
 #include "accel/geometry.h"
 
 #include <cstdint>
@@ -16,11 +18,17 @@ struct Plane {
   std::uint32_t material = 0;     ///< Index into Scene::materials.
 };
 
-inline float intersect(const Plane& pl, const Ray& ray) {
-  const float denom = glm::dot(pl.normal, ray.dir);
-  if (denom == 0.0f) return accel::kInfinity;
-  const float t = (pl.offset - glm::dot(pl.normal, ray.org)) / denom;
-  return t > ray.tmin ? t : accel::kInfinity;
+/// Distance t > tmin to the plane in the ray's scalar type, or +inf.
+template <class T>
+T plane_distance(const Plane& pl, const RayT<T>& ray) {
+  const Vec3T<T> n(pl.normal);
+  const T denom = glm::dot(n, ray.dir);
+  if (denom == T(0)) return kInfinityOf<T>;
+  const T t = (T(pl.offset) - glm::dot(n, ray.org)) / denom;
+  return t > ray.tmin ? t : kInfinityOf<T>;
 }
+
+inline float intersect(const Plane& pl, const Ray& ray) { return plane_distance<float>(pl, ray); }
+inline double intersect(const Plane& pl, const RayD& ray) { return plane_distance<double>(pl, ray); }
 
 }  // namespace tracer

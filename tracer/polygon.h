@@ -13,6 +13,8 @@
 // and a point on an edge shared by two coplanar polygons is inside exactly one of them. Every
 // edge is evaluated from its lower endpoint, so both polygons compute the same crossing.
 
+#include "scalar.h"
+
 #include "accel/geometry.h"
 
 #include <cmath>
@@ -59,36 +61,47 @@ inline Polygon make_polygon(std::span<const Vec3> vertices, std::uint32_t first_
 }
 
 /// Even-odd test of the projected point (pu, pv) against the polygon's projected edges, with
-/// the half-open edge rule described at the top of this file.
-inline bool polygon_contains(const Polygon& poly, const Vec3* vertices, float pu, float pv) {
+/// the half-open edge rule described at the top of this file, in the scalar type T.
+template <class T>
+bool polygon_contains(const Polygon& poly, const Vec3* vertices, T pu, T pv) {
   const int ui = (poly.drop_axis + 1) % 3;
   const int vi = (poly.drop_axis + 2) % 3;
   bool inside = false;
   const Vec3* vs = vertices + poly.first_vertex;
   const std::uint32_t n = poly.vertex_count;
   for (std::uint32_t i = 0, j = n - 1; i < n; j = i++) {
-    Vec3 lo = vs[j], hi = vs[i];
+    Vec3T<T> lo(vs[j]), hi(vs[i]);
     if (lo[vi] > hi[vi]) std::swap(lo, hi);
     if (!(pv >= lo[vi] && pv < hi[vi])) continue;  // half-open in v; skips horizontal edges
     // Is the crossing at height pv strictly right of pu? Cross-multiplied by (hi.v - lo.v) > 0.
-    const float lhs = (pu - lo[ui]) * (hi[vi] - lo[vi]);
-    const float rhs = (pv - lo[vi]) * (hi[ui] - lo[ui]);
+    const T lhs = (pu - lo[ui]) * (hi[vi] - lo[vi]);
+    const T rhs = (pv - lo[vi]) * (hi[ui] - lo[ui]);
     if (lhs < rhs) inside = !inside;
   }
   return inside;
 }
 
-/// Nearest t > ray.tmin where the ray meets the polygon (either side), or +inf.
-inline float intersect_polygon(const Polygon& poly, const Vec3* vertices, const Ray& ray) {
-  const float denom = glm::dot(poly.normal, ray.dir);
-  if (denom == 0.0f || !std::isfinite(denom)) return accel::kInfinity;
+/// Nearest t > ray.tmin where the ray meets the polygon (either side), or +inf, in the ray's
+/// scalar type.
+template <class T>
+T polygon_distance(const Polygon& poly, const Vec3* vertices, const RayT<T>& ray) {
+  const Vec3T<T> n(poly.normal);
+  const T denom = glm::dot(n, ray.dir);
+  if (denom == T(0) || !std::isfinite(denom)) return kInfinityOf<T>;
   // Measured from the first vertex rather than the world origin, for precision far away.
-  const float t = glm::dot(poly.normal, vertices[poly.first_vertex] - ray.org) / denom;
-  if (!(t > ray.tmin) || !(t < accel::kInfinity)) return accel::kInfinity;
-  const Vec3 p = ray.org + t * ray.dir;
+  const T t = glm::dot(n, Vec3T<T>(vertices[poly.first_vertex]) - ray.org) / denom;
+  if (!(t > ray.tmin) || !(t < kInfinityOf<T>)) return kInfinityOf<T>;
+  const Vec3T<T> p = ray.org + t * ray.dir;
   const int ui = (poly.drop_axis + 1) % 3;
   const int vi = (poly.drop_axis + 2) % 3;
-  return polygon_contains(poly, vertices, p[ui], p[vi]) ? t : accel::kInfinity;
+  return polygon_contains<T>(poly, vertices, p[ui], p[vi]) ? t : kInfinityOf<T>;
+}
+
+inline float intersect_polygon(const Polygon& poly, const Vec3* vertices, const Ray& ray) {
+  return polygon_distance<float>(poly, vertices, ray);
+}
+inline double intersect_polygon(const Polygon& poly, const Vec3* vertices, const RayD& ray) {
+  return polygon_distance<double>(poly, vertices, ray);
 }
 
 inline accel::Aabb bounds(const Polygon& poly, const Vec3* vertices) {

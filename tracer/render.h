@@ -10,6 +10,7 @@
 #include "image.h"
 #include "parallel.h"
 #include "ray_counts.h"
+#include "scalar.h"
 #include "scene.h"
 
 #include "accel/accel.h"
@@ -73,6 +74,16 @@ const Integrator& whitted_integrator();
 
 /// Eric Haines' SPD test rules (tracer/spd_render.h): rays at pixel corners, tree depth 5.
 const Integrator& spd_integrator();
+
+/// The knobs of an integrator whose only knob is "precision": "float" (the default) traces
+/// through the given structure in float; "double" traces the naive loop over every primitive in
+/// double precision, whatever the structure (the reference the float renderer is measured
+/// against, tracer/naive_reference.h). Throws std::invalid_argument, one line naming the knob,
+/// on any other key or value. Returns the completed knobs.
+nlohmann::json precision_params(std::string_view integrator, const nlohmann::json& given);
+
+/// The precision a completed knob object (from precision_params) asks for.
+Precision precision_of(const nlohmann::json& params);
 
 /// The knobs of an integrator that has none: `given` must be empty (else std::invalid_argument
 /// naming the first key); returns an empty object.

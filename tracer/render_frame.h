@@ -5,6 +5,7 @@
 
 #include "camera.h"
 #include "intersector.h"
+#include "naive_reference.h"
 #include "parallel.h"
 #include "render.h"
 
@@ -65,10 +66,21 @@ Frame make_frame(const Scene& scene, const RenderOptions& options, FilmSpec film
 /// corners.
 Image resolve_image(const Frame& frame, const std::vector<Color>& grid);
 
-/// Traces the film samples of one tile into `grid`.
+/// The scalar type a tracer computes in: its `Scalar` member type, or float.
+template <class Tracer, class = void>
+struct TracerScalar {
+  using type = float;
+};
 template <class Tracer>
-void trace_tile(const Frame& f, int tile, const Tracer& tracer, RayCounts& rays,
-                std::vector<Color>& grid) {
+struct TracerScalar<Tracer, std::void_t<typename Tracer::Scalar>> {
+  using type = typename Tracer::Scalar;
+};
+
+/// Traces the film samples of one tile into `grid`, with camera rays from `camera` (a
+/// PinholeCameraT of the tracer's scalar type).
+template <class Camera, class Tracer>
+void trace_tile(const Frame& f, const Camera& camera, int tile, const Tracer& tracer,
+                RayCounts& rays, std::vector<Color>& grid) {
   const int gx0 = (tile % f.tiles_x) * kTileSize, gy0 = (tile / f.tiles_x) * kTileSize;
   const int gx1 = std::min(gx0 + kTileSize, f.grid_w), gy1 = std::min(gy0 + kTileSize, f.grid_h);
   const float inv_spp = 1.0f / float(f.spp);
@@ -77,13 +89,13 @@ void trace_tile(const Frame& f, int tile, const Tracer& tracer, RayCounts& rays,
       const int x = f.window.x0 + gx, y = f.window.y0 + gy;
       Color c;
       if (f.film == FilmSampling::PixelCorners) {
-        c = tracer.trace_eye(f.camera.ray_through(float(x), float(y)), rays);
+        c = tracer.trace_eye(camera.ray_through(float(x), float(y)), rays);
       } else {
         Color sum(0.0f);
         for (int s = 0; s < f.spp; ++s) {
           float jx = 0.5f, jy = 0.5f;
           sample_offset(x, y, s, f.spp, jx, jy, f.seed);
-          sum += tracer.trace_eye(f.camera.primary_ray(x, y, jx, jy), rays);
+          sum += tracer.trace_eye(camera.primary_ray(x, y, jx, jy), rays);
         }
         c = f.spp == 1 ? sum : sum * inv_spp;
       }
@@ -91,33 +103,34 @@ void trace_tile(const Frame& f, int tile, const Tracer& tracer, RayCounts& rays,
     }
 }
 
-}  // namespace render_frame_detail
-
-/// Renders `scene` through `accel` in tiles on every worker thread. `make_tracer(isect)` is called
-/// once per worker with that worker's intersector (its own traversal counters) and returns the
-/// worker's tracer: an object with `Color trace_eye(const Ray&, RayCounts&) const` that traces one
-/// camera ray and counts it. Every film sample depends on its ray alone, so the image and the
-/// summed counts are the same at any thread count. A worker's exception is rethrown here.
-template <class MakeTracer>
-RenderResult render_frame(const Scene& scene, const accel::AnyAccel& accel,
-                          const RenderOptions& options, FilmSpec film,
-                          MakeTracer&& make_tracer) {
-  using namespace render_frame_detail;
+/// The tile loop of every render: `dispatch(body)` calls body(intersector) once, with the
+/// intersector the frame is traced through (with_intersector's choice, or a given one).
+template <class Dispatch, class MakeTracer>
+RenderResult render_frame_with(const Scene& scene, const RenderOptions& options, FilmSpec film,
+                               Dispatch&& dispatch, MakeTracer&& make_tracer) {
   const Frame frame = make_frame(scene, options, film);
   std::vector<Color> grid(std::size_t(frame.grid_w) * std::size_t(frame.grid_h));
   std::vector<ThreadTally> tallies(static_cast<std::size_t>(frame.threads));
 
   const auto start = std::chrono::steady_clock::now();
-  with_intersector(scene.geometry, accel, options.count_traversal, [&](const auto& base) {
+  dispatch([&](const auto& base) {
     using Isect = std::decay_t<decltype(base)>;
     using Tracer = std::decay_t<decltype(make_tracer(base))>;
+    using Scalar = typename TracerScalar<Tracer>::type;
+    // The float camera of the frame, or the same camera computed in the tracer's scalar type.
+    const PinholeCameraT<Scalar> camera = [&] {
+      if constexpr (std::is_same_v<Scalar, float>)
+        return frame.camera;
+      else
+        return PinholeCameraT<Scalar>(scene.camera, frame.camera.width(), frame.camera.height());
+    }();
     std::vector<std::optional<Tracer>> tracers(static_cast<std::size_t>(frame.threads));
     parallel_items(frame.threads, frame.tiles, [&](int worker, int tile) {
       ThreadTally& tally = tallies[std::size_t(worker)];
       std::optional<Tracer>& tracer = tracers[std::size_t(worker)];
       if (!tracer)
         tracer.emplace(make_tracer(Isect::kCounting ? base.with_counters(&tally.traversal) : base));
-      trace_tile(frame, tile, *tracer, tally.rays, grid);
+      trace_tile(frame, camera, tile, *tracer, tally.rays, grid);
     });
   });
   const auto stop = std::chrono::steady_clock::now();
@@ -130,6 +143,45 @@ RenderResult render_frame(const Scene& scene, const accel::AnyAccel& accel,
     result.traversal += t.traversal;
   }
   return result;
+}
+
+}  // namespace render_frame_detail
+
+/// Renders `scene` through `accel` in tiles on every worker thread. `make_tracer(isect)` is called
+/// once per worker with that worker's intersector (its own traversal counters) and returns the
+/// worker's tracer: an object with `Color trace_eye(const Ray&, RayCounts&) const` that traces one
+/// camera ray and counts it (a tracer with `using Scalar = double` gets RayD camera rays). Every
+/// film sample depends on its ray alone, so the image and the summed counts are the same at any
+/// thread count. A worker's exception is rethrown here.
+template <class MakeTracer>
+RenderResult render_frame(const Scene& scene, const accel::AnyAccel& accel,
+                          const RenderOptions& options, FilmSpec film,
+                          MakeTracer&& make_tracer) {
+  return render_frame_detail::render_frame_with(
+      scene, options, film,
+      [&](auto&& body) { with_intersector(scene.geometry, accel, options.count_traversal, body); },
+      make_tracer);
+}
+
+/// The same tile loop through one given intersector instead of a built structure: the naive
+/// reference in double (tracer/naive_reference.h). Traversal counters stay zero.
+template <class Isect, class MakeTracer>
+RenderResult render_frame_on(const Scene& scene, const Isect& isect, const RenderOptions& options,
+                             FilmSpec film, MakeTracer&& make_tracer) {
+  return render_frame_detail::render_frame_with(
+      scene, options, film, [&](auto&& body) { body(isect); }, make_tracer);
+}
+
+/// render_frame in float through `accel`, or with Precision::Double render_frame_on the naive
+/// reference in double (the structure is not used).
+template <class MakeTracer>
+RenderResult render_frame_at(Precision precision, const Scene& scene, const accel::AnyAccel& accel,
+                             const RenderOptions& options, FilmSpec film,
+                             MakeTracer&& make_tracer) {
+  if (precision == Precision::Double)
+    return render_frame_on(scene, NaiveReference<double>(scene.geometry), options, film,
+                           make_tracer);
+  return render_frame(scene, accel, options, film, make_tracer);
 }
 
 }  // namespace tracer

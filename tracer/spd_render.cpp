@@ -17,6 +17,10 @@ namespace {
 template <class Isect>
 class SpdTracer {
  public:
+  using Scalar = typename Isect::Scalar;  ///< float, or double for the naive reference.
+  using V = Vec3T<Scalar>;
+  using R = RayT<Scalar>;
+
   SpdTracer(const Scene& scene, const Isect& isect, const std::vector<NffSurface>& surfaces)
       : scene_(&scene),
         isect_(isect),
@@ -24,7 +28,7 @@ class SpdTracer {
         intensity_(spd_light_intensity(scene.lights.size())) {}
 
   /// Colour along an eye ray (tree depth 1); counts it, and whether it hit.
-  Color trace_eye(const Ray& ray, RayCounts& counts) const {
+  Color trace_eye(const R& ray, RayCounts& counts) const {
     counts.eye++;
     bool hit = false;
     const Color color = trace(ray, 1, counts, &hit);
@@ -33,13 +37,13 @@ class SpdTracer {
   }
 
   /// Colour along `ray` at tree depth `depth`; sets *hit to whether it met a primitive.
-  Color trace(const Ray& ray, int depth, RayCounts& counts, bool* hit_out = nullptr) const {
-    const Hit hit = isect_.closest(ray);
+  Color trace(const R& ray, int depth, RayCounts& counts, bool* hit_out = nullptr) const {
+    const auto hit = isect_.closest(ray);
     if (hit_out) *hit_out = hit.found();
     if (!hit.found()) return scene_->background;
 
     const Geometry& geo = isect_.geometry();
-    SurfacePoint sp = surface_point(geo, ray, hit);
+    SurfacePointT<Scalar> sp = surface_point(geo, ray, hit);
     // A sphere of negative radius shows its inside: its normal points inwards.
     if (!hit.is_plane() && geo.kind_of(hit.prim) == PrimitiveKind::Sphere &&
         geo.spheres[hit.prim].radius < 0.0f) {
@@ -47,14 +51,14 @@ class SpdTracer {
       sp.n_shade = -sp.n_shade;
     }
     // Vertex normals decide which side of a smooth triangle is its front.
-    if (glm::dot(sp.n_geo, sp.n_shade) < 0.0f) sp.n_geo = -sp.n_geo;
+    if (glm::dot(sp.n_geo, sp.n_shade) < Scalar(0)) sp.n_geo = -sp.n_geo;
 
     const NffSurface& s = (*surfaces_)[sp.material];
-    const Vec3 d = glm::normalize(ray.dir);
+    const V d = glm::normalize(ray.dir);
     const bool transmits = s.transmittance > 0.0f;
-    Vec3 ng = sp.n_geo, ns = sp.n_shade;
+    V ng = sp.n_geo, ns = sp.n_shade;
     bool entering = true;
-    if (transmits && glm::dot(ng, d) > 0.0f) {  // two-sided: face the arriving ray
+    if (transmits && glm::dot(ng, d) > Scalar(0)) {  // two-sided: face the arriving ray
       ng = -ng;
       ns = -ns;
       entering = false;
@@ -62,33 +66,35 @@ class SpdTracer {
 
     Color color = nff_ambient(s, intensity_);
     for (const PointLight& light : scene_->lights) {
-      const Vec3 to_light = light.position - sp.p;
-      if (!(glm::dot(ns, to_light) > 0.0f)) continue;  // normal faces away: no shadow ray
+      const V light_position(light.position);
+      const V to_light = light_position - sp.p;
+      if (!(glm::dot(ns, to_light) > Scalar(0))) continue;  // normal faces away: no shadow ray
       // Leaves on the light's side; t = 1 just short of the light.
-      const Ray shadow =
-          segment_to(offset_ray_origin(sp, glm::dot(ng, to_light) > 0.0f ? ng : -ng), light.position);
+      const R shadow = segment_to(
+          offset_ray_origin(sp, glm::dot(ng, to_light) > Scalar(0) ? ng : -ng), light_position);
       counts.shadow++;
       if (isect_.occluded(shadow)) continue;
-      color += nff_direct(s, ns, -d, glm::normalize(to_light), intensity_ * light.color);
+      color += nff_direct(s, Vec3(ns), Vec3(-d), Vec3(glm::normalize(to_light)),
+                          intensity_ * light.color);
     }
 
     if (depth >= kSpdMaxDepth) return color;
     if (s.ks > 0.0f || transmits) {
-      const Vec3 r = reflect(d, ns);
-      Ray reflected;
-      reflected.org = offset_ray_origin(sp, glm::dot(r, ng) >= 0.0f ? ng : -ng);
+      const V r = reflect(d, ns);
+      R reflected;
+      reflected.org = offset_ray_origin(sp, glm::dot(r, ng) >= Scalar(0) ? ng : -ng);
       reflected.dir = r;
       counts.reflection++;
       const Color rc = trace(reflected, depth + 1, counts);
       color += s.ks * rc;
     }
     if (transmits) {
-      const float eta = entering ? 1.0f / s.ior : s.ior;
+      const Scalar eta = entering ? Scalar(1) / Scalar(s.ior) : Scalar(s.ior);
       // refract() needs a normal against the ray; an interpolated one may not be.
-      const Vec3 n_against = glm::dot(ns, d) < 0.0f ? ns : ng;
-      Vec3 t;
+      const V n_against = glm::dot(ns, d) < Scalar(0) ? ns : ng;
+      V t;
       if (refract(d, n_against, eta, t)) {
-        Ray refracted;
+        R refracted;
         refracted.org = offset_ray_origin(sp, -ng);
         refracted.dir = glm::normalize(t);
         counts.refraction++;
@@ -106,17 +112,17 @@ class SpdTracer {
 };
 
 RenderResult render_spd(const Scene& scene, const accel::AnyAccel& accel,
-                        const RenderOptions& options, const nlohmann::json&) {
+                        const RenderOptions& options, const nlohmann::json& params) {
   std::vector<NffSurface> surfaces;
   surfaces.reserve(scene.materials.size());
   for (const Material& m : scene.materials) surfaces.push_back(nff_surface(m));
-  return render_frame(scene, accel, options, FilmSampling::PixelCorners,
-                      [&scene, &surfaces](const auto& isect) {
-                        return SpdTracer<std::decay_t<decltype(isect)>>(scene, isect, surfaces);
-                      });
+  return render_frame_at(precision_of(params), scene, accel, options, FilmSampling::PixelCorners,
+                         [&scene, &surfaces](const auto& isect) {
+                           return SpdTracer<std::decay_t<decltype(isect)>>(scene, isect, surfaces);
+                         });
 }
 
-nlohmann::json spd_params(const nlohmann::json& given) { return no_params("spd", given); }
+nlohmann::json spd_params(const nlohmann::json& given) { return precision_params("spd", given); }
 
 }  // namespace
 

@@ -7,24 +7,31 @@
 // within p +- p_error. Secondary rays leave from p moved along the geometric normal by exactly
 // that bound (tracer/offset_ray.h), which is a few ulps of the coordinates involved at any scale.
 // Sphere, plane, polygon and cone points are re-projected onto their surface and triangle points
-// are barycentric, so the bound does not grow with the ray's length.
+// are barycentric, so the bound does not grow with the ray's length. Written once for the scalar
+// type T (float, double: tracer/scalar.h).
 
 #include "geometry.h"
 #include "intersector.h"
+#include "scalar.h"
 
 #include <cstdint>
 
 namespace tracer {
 
-struct SurfacePoint {
-  Vec3 p{0.0f};        ///< Hit point, world units.
-  Vec3 p_error{0.0f};  ///< Bound on |p - q| per coordinate for some point q of the exact surface, world units.
-  Vec3 n_geo{0.0f};    ///< Outward unit geometric normal (front side for planes and triangles).
-  Vec3 n_shade{0.0f};  ///< Unit shading normal: n_geo, or the interpolated vertex normal.
+template <class T>
+struct SurfacePointT {
+  Vec3T<T> p{T(0)};        ///< Hit point, world units.
+  Vec3T<T> p_error{T(0)};  ///< Bound on |p - q| per coordinate for some point q of the exact surface, world units.
+  Vec3T<T> n_geo{T(0)};    ///< Outward unit geometric normal (front side for planes and triangles).
+  Vec3T<T> n_shade{T(0)};  ///< Unit shading normal: n_geo, or the interpolated vertex normal.
   std::uint32_t material = 0;  ///< Index into Scene::materials.
 };
+using SurfacePoint = SurfacePointT<float>;
+using SurfacePointD = SurfacePointT<double>;
 
 /// The surface point of `hit` (which must be found()) on the ray it came from.
 SurfacePoint surface_point(const Geometry& geometry, const Ray& ray, const Hit& hit);
+/// The same in double precision (the naive reference).
+SurfacePointD surface_point(const Geometry& geometry, const RayD& ray, const HitD& hit);
 
 }  // namespace tracer

@@ -1,6 +1,8 @@
 #pragma once
 // Ray–triangle intersection (Möller–Trumbore), two-sided.
 
+#include "scalar.h"
+
 #include "accel/geometry.h"
 
 #include <cmath>
@@ -17,30 +19,40 @@ struct Triangle {
   std::int32_t normals = -1;   ///< Index of three vertex normals in Geometry::vertex_normals, or -1.
 };
 
-/// Distance t > tmin to the triangle, or +inf. Barycentrics (u, v) of p1 and p2 when hit.
-inline float intersect_triangle(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Ray& ray,
-                                float* u_out = nullptr, float* v_out = nullptr) {
-  const Vec3 e1 = p1 - p0;
-  const Vec3 e2 = p2 - p0;
-  const Vec3 pv = glm::cross(ray.dir, e2);
-  const float det = glm::dot(e1, pv);
-  if (det == 0.0f || !std::isfinite(det)) return accel::kInfinity;
-  const float inv_det = 1.0f / det;
-  const Vec3 tv = ray.org - p0;
-  const float u = glm::dot(tv, pv) * inv_det;
-  if (u < 0.0f || u > 1.0f) return accel::kInfinity;
-  const Vec3 qv = glm::cross(tv, e1);
-  const float v = glm::dot(ray.dir, qv) * inv_det;
-  if (v < 0.0f || u + v > 1.0f) return accel::kInfinity;
-  const float t = glm::dot(e2, qv) * inv_det;
-  if (!(t > ray.tmin)) return accel::kInfinity;
+/// Distance t > tmin to the triangle in the ray's scalar type, or +inf. Barycentrics (u, v) of
+/// p1 and p2 when hit.
+template <class T>
+T triangle_distance(const Vec3T<T>& p0, const Vec3T<T>& p1, const Vec3T<T>& p2,
+                    const RayT<T>& ray, T* u_out = nullptr, T* v_out = nullptr) {
+  const Vec3T<T> e1 = p1 - p0;
+  const Vec3T<T> e2 = p2 - p0;
+  const Vec3T<T> pv = glm::cross(ray.dir, e2);
+  const T det = glm::dot(e1, pv);
+  if (det == T(0) || !std::isfinite(det)) return kInfinityOf<T>;
+  const T inv_det = T(1) / det;
+  const Vec3T<T> tv = ray.org - p0;
+  const T u = glm::dot(tv, pv) * inv_det;
+  if (u < T(0) || u > T(1)) return kInfinityOf<T>;
+  const Vec3T<T> qv = glm::cross(tv, e1);
+  const T v = glm::dot(ray.dir, qv) * inv_det;
+  if (v < T(0) || u + v > T(1)) return kInfinityOf<T>;
+  const T t = glm::dot(e2, qv) * inv_det;
+  if (!(t > ray.tmin)) return kInfinityOf<T>;
   if (u_out) *u_out = u;
   if (v_out) *v_out = v;
   return t;
 }
 
+inline float intersect_triangle(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Ray& ray,
+                                float* u_out = nullptr, float* v_out = nullptr) {
+  return triangle_distance<float>(p0, p1, p2, ray, u_out, v_out);
+}
+
 inline float intersect(const Triangle& tri, const Ray& ray) {
-  return intersect_triangle(tri.p0, tri.p1, tri.p2, ray);
+  return triangle_distance<float>(tri.p0, tri.p1, tri.p2, ray);
+}
+inline double intersect(const Triangle& tri, const RayD& ray) {
+  return triangle_distance<double>(glm::dvec3(tri.p0), glm::dvec3(tri.p1), glm::dvec3(tri.p2), ray);
 }
 
 inline accel::Aabb bounds(const Triangle& tri) {

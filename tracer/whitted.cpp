@@ -41,16 +41,18 @@ RenderResult render_whitted(const Scene& scene, const accel::AnyAccel& accel,
   const WhittedParams p = whitted_params_from_json(knobs);
   const RenderSettings limits = p.limits(scene);
   const int spp = p.samples_per_pixel(scene);
-  RenderResult r = render_frame(scene, accel, options,
-                                FilmSpec(FilmSampling::PixelSamples, spp, p.seed),
-                                [&scene, &limits](const auto& isect) {
-                                  return Whitted<std::decay_t<decltype(isect)>>(scene, isect, limits);
-                                });
+  RenderResult r = render_frame_at(p.precision, scene, accel, options,
+                                   FilmSpec(FilmSampling::PixelSamples, spp, p.seed),
+                                   [&scene, &limits](const auto& isect) {
+                                     return Whitted<std::decay_t<decltype(isect)>>(scene, isect,
+                                                                                   limits);
+                                   });
   // The settings in effect, the scene's where no knob was given.
   r.stats["effective"] = {{"max_depth", limits.max_depth},
                           {"min_weight", limits.min_weight},
                           {"spp", spp},
-                          {"seed", p.seed}};
+                          {"seed", p.seed},
+                          {"precision", p.precision == Precision::Double ? "double" : "float"}};
   return r;
 }
 

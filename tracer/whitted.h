@@ -43,6 +43,11 @@ Color diffuse_phong_brdf(const DirectResponse& r, const Vec3& n, const Vec3& to_
 template <class Isect>
 class Whitted {
  public:
+  using Scalar = typename Isect::Scalar;  ///< float, or double for the naive reference.
+  using V = Vec3T<Scalar>;
+  using R = RayT<Scalar>;
+  using Point = SurfacePointT<Scalar>;
+
   /// An integrator over `scene` (which must outlive it) querying geometry through `isect`, with
   /// the scene's recursion limits or `limits` in their place.
   Whitted(const Scene& scene, const Isect& isect) : Whitted(scene, isect, scene.render) {}
@@ -50,7 +55,7 @@ class Whitted {
       : scene_(&scene), isect_(isect), limits_(limits) {}
 
   /// Radiance arriving along a camera ray (unit direction); counts every ray traced.
-  Color trace_eye(const Ray& ray, RayCounts& counts) const {
+  Color trace_eye(const R& ray, RayCounts& counts) const {
     counts.eye++;
     return trace(ray, 1, Color(1.0f), Color(0.0f), counts);
   }
@@ -58,22 +63,22 @@ class Whitted {
  private:
   /// Radiance along `ray` at recursion depth `depth` (camera ray = 1). `throughput` is the
   /// path's weight before this ray and `absorption` the Beer coefficient of the medium it
-  /// travels in.
-  Color trace(const Ray& ray, int depth, const Color& throughput, const Color& absorption,
+  /// travels in. Geometry is computed in Scalar, colours in float.
+  Color trace(const R& ray, int depth, const Color& throughput, const Color& absorption,
               RayCounts& counts) const {
-    const Hit hit = isect_.closest(ray);
+    const auto hit = isect_.closest(ray);
     if (!hit.found()) return beer_transmittance(absorption, accel::kInfinity) * scene_->background;
     if (depth == 1) counts.eye_hits++;
 
-    const Color attenuation = beer_transmittance(absorption, hit.t);
+    const Color attenuation = beer_transmittance(absorption, float(hit.t));
     const Color weight = throughput * attenuation;
-    const SurfacePoint sp = surface_point(isect_.geometry(), ray, hit);
+    const Point sp = surface_point(isect_.geometry(), ray, hit);
     const Material& m = scene_->materials[sp.material];
     // Normals turned to the side the ray arrives from.
-    const bool front = glm::dot(ray.dir, sp.n_geo) <= 0.0f;
-    const Vec3 n_geo = front ? sp.n_geo : -sp.n_geo;
-    Vec3 n = front ? sp.n_shade : -sp.n_shade;
-    if (glm::dot(n, n_geo) < 0.0f) n = n_geo;  // interpolated normal turned past the surface
+    const bool front = glm::dot(ray.dir, sp.n_geo) <= Scalar(0);
+    const V n_geo = front ? sp.n_geo : -sp.n_geo;
+    V n = front ? sp.n_shade : -sp.n_shade;
+    if (glm::dot(n, n_geo) < Scalar(0)) n = n_geo;  // interpolated normal turned past the surface
 
     Color radiance(0.0f);
     switch (m.type) {
@@ -97,9 +102,9 @@ class Whitted {
           radiance += m.ks * spawn(sp, n_geo, reflect(ray.dir, n), depth, weight * m.ks,
                                    absorption, counts.reflection, counts);
         if (m.transmittance > 0.0f) {
-          const float ior = m.ior > 0.0f ? m.ior : 1.0f;
-          const Interface s = orient(ray.dir, front ? n : -n, ior);
-          Vec3 t;
+          const Scalar ior = m.ior > 0.0f ? m.ior : 1.0f;
+          const auto s = orient(ray.dir, front ? n : -n, ior);
+          V t;
           if (refract(ray.dir, s.normal, s.eta_i / s.eta_t, t))
             radiance += m.transmittance * spawn(sp, -n_geo, glm::normalize(t), depth,
                                                 weight * m.transmittance, absorption,
@@ -113,12 +118,11 @@ class Whitted {
 
   /// Traces a secondary ray of direction `dir` from the surface point sp, leaving on the side of
   /// `side` (a unit geometric normal), when the depth and weight limits allow; counts it.
-  Color spawn(const SurfacePoint& sp, const Vec3& side, const Vec3& dir, int depth,
-              const Color& weight, const Color& absorption, std::uint64_t& kind_count,
-              RayCounts& counts) const {
+  Color spawn(const Point& sp, const V& side, const V& dir, int depth, const Color& weight,
+              const Color& absorption, std::uint64_t& kind_count, RayCounts& counts) const {
     const RenderSettings& rs = limits_;
     if (depth + 1 > rs.max_depth || !(path_weight(weight) >= rs.min_weight)) return Color(0.0f);
-    Ray r;
+    R r;
     r.org = offset_ray_origin(sp, side);
     r.dir = dir;
     kind_count++;
@@ -126,19 +130,19 @@ class Whitted {
   }
 
   /// Both Fresnel branches of a smooth dielectric. `n`, `n_geo` face the arriving ray.
-  Color dielectric(const Vec3& d, const SurfacePoint& sp, const Vec3& n, const Vec3& n_geo,
-                   bool front, const Material& m, float ior, int depth, const Color& weight,
+  Color dielectric(const V& d, const Point& sp, const V& n, const V& n_geo, bool front,
+                   const Material& m, Scalar ior, int depth, const Color& weight,
                    const Color& absorption, RayCounts& counts) const {
     // The sign of d.n_outward says whether the ray enters or leaves; leaving uses
     // eta = ior / 1. The medium beyond the surface is air unless the ray enters.
-    const Interface s = orient(d, front ? n : -n, ior);
+    const auto s = orient(d, front ? n : -n, ior);
     const Color inside_absorption = m.absorption;
     const Color beyond = s.entering ? inside_absorption : Color(0.0f);
     const Color here = absorption;
-    Vec3 t;
+    V t;
     float reflectance = 1.0f;
     const bool transmits = refract(d, s.normal, s.eta_i / s.eta_t, t);
-    if (transmits) reflectance = fresnel_dielectric(s.cos_i, s.eta_i, s.eta_t);
+    if (transmits) reflectance = float(fresnel_dielectric(s.cos_i, s.eta_i, s.eta_t));
     Color radiance(0.0f);
     if (reflectance > 0.0f)
       radiance += reflectance * spawn(sp, n_geo, reflect(d, n), depth, weight * reflectance, here,
@@ -153,19 +157,20 @@ class Whitted {
 
   /// Direct light from every point light through shadow rays, diffuse + Phong. `n` and `n_geo`
   /// face the arriving ray; shadow rays leave on n_geo's side.
-  Color direct(const SurfacePoint& sp, const Vec3& n, const Vec3& n_geo, const Vec3& to_eye,
+  Color direct(const Point& sp, const V& n, const V& n_geo, const V& to_eye,
                const DirectResponse& response, RayCounts& counts) const {
     Color radiance(0.0f);
-    const Vec3 origin = offset_ray_origin(sp, n_geo);
+    const V origin = offset_ray_origin(sp, n_geo);
     for (const PointLight& light : scene_->lights) {
-      const Vec3 to_light = light.position - sp.p;
-      if (!(glm::dot(to_light, n) > 0.0f) || !(glm::dot(to_light, n_geo) > 0.0f)) continue;
-      const Ray shadow = segment_to(origin, light.position);  // t = 1 just short of the light
+      const V light_position(light.position);
+      const V to_light = light_position - sp.p;
+      if (!(glm::dot(to_light, n) > Scalar(0)) || !(glm::dot(to_light, n_geo) > Scalar(0))) continue;
+      const R shadow = segment_to(origin, light_position);  // t = 1 just short of the light
       counts.shadow++;
       if (isect_.occluded(shadow)) continue;
-      const Vec3 l = glm::normalize(to_light);
-      radiance +=
-          diffuse_phong_brdf(response, n, l, to_eye) * point_light_irradiance(light, to_light, n);
+      const V l = glm::normalize(to_light);
+      radiance += diffuse_phong_brdf(response, Vec3(n), Vec3(l), Vec3(to_eye)) *
+                  point_light_irradiance(light, Vec3(to_light), Vec3(n));
     }
     return radiance;
   }

@@ -37,7 +37,11 @@ int WhittedParams::samples_per_pixel(const Scene& scene) const {
 }
 
 nlohmann::json to_json(const WhittedParams& p) {
-  return {{"max_depth", p.max_depth}, {"min_weight", p.min_weight}, {"spp", p.spp}, {"seed", p.seed}};
+  return {{"max_depth", p.max_depth},
+          {"min_weight", p.min_weight},
+          {"spp", p.spp},
+          {"seed", p.seed},
+          {"precision", p.precision == Precision::Double ? "double" : "float"}};
 }
 
 WhittedParams whitted_params_from_json(const nlohmann::json& j) {
@@ -59,9 +63,12 @@ WhittedParams whitted_params_from_json(const nlohmann::json& j) {
       if (!v.is_number_unsigned() && !(v.is_number_integer() && v.get<long long>() >= 0))
         fail(key, "an integer in [0, 2^64-1]", v);
       p.seed = v.get<std::uint64_t>();
+    } else if (key == "precision") {
+      if (v != "float" && v != "double") fail(key, "\"float\" or \"double\"", v);
+      p.precision = v == "double" ? Precision::Double : Precision::Float;
     } else {
       throw std::invalid_argument("whitted: unknown knob '" + key +
-                                  "' (its knobs: max_depth, min_weight, spp, seed)");
+                                  "' (its knobs: max_depth, min_weight, spp, seed, precision)");
     }
   }
   return p;

@@ -1,9 +1,10 @@
 #pragma once
 // The Whitted integrator's accuracy knobs: recursion depth, path-weight cut-off, samples per
-// pixel and the seed of the sample jitter. Each defaults to the scene's own setting, so a render
+// pixel, the seed of the sample jitter, and the precision of the geometry. Each defaults to the scene's own setting, so a render
 // without knobs is the scene as written; a knob given overrides the scene for that render. These
 // are the knobs `accelbench fronts` trades against time (docs/accuracy.md).
 
+#include "scalar.h"
 #include "scene.h"
 
 #include <nlohmann/json.hpp>
@@ -22,6 +23,10 @@ struct WhittedParams {
   /// Seed of the stratified sub-pixel jitter; 0 = the fixed pattern every earlier render used.
   /// Renders with other seeds are independent estimates of the same image (spp > 1).
   std::uint64_t seed = 0;
+  /// Arithmetic of the geometry: "float" traces through the given structure; "double" traces
+  /// the naive loop over every primitive in double (the float renderer's reference,
+  /// tracer/naive_reference.h; the structure is not used).
+  Precision precision = Precision::Float;
 
   /// The recursion limits of `scene` with the knobs given here applied.
   RenderSettings limits(const Scene& scene) const;
