@@ -55,4 +55,97 @@ void scale_scene(Scene& scene, double factor) {
   for (Material& m : scene.materials) m.absorption = Color(glm::dvec3(m.absorption) / factor);
 }
 
+glm::dvec3 primitive_centre(const Geometry& g, std::uint32_t id) {
+  using glm::dvec3;
+  switch (g.kind_of(id)) {
+    case PrimitiveKind::Sphere:
+      return dvec3(g.spheres[id - g.first_id[0]].center);
+    case PrimitiveKind::Triangle: {
+      const Triangle& t = g.triangles[id - g.first_id[1]];
+      return (dvec3(t.p0) + dvec3(t.p1) + dvec3(t.p2)) / 3.0;
+    }
+    case PrimitiveKind::Box: {
+      const Box& b = g.boxes[id - g.first_id[2]];
+      return 0.5 * (dvec3(b.lo) + dvec3(b.hi));
+    }
+    case PrimitiveKind::Cone: {
+      const Cone& c = g.cones[id - g.first_id[3]];
+      return dvec3(c.base) + 0.5 * double(c.height) * dvec3(c.axis);
+    }
+    case PrimitiveKind::Polygon: {
+      const Polygon& p = g.polygons[id - g.first_id[4]];
+      dvec3 sum(0.0);
+      for (std::uint32_t i = 0; i < p.vertex_count; ++i)
+        sum += dvec3(g.polygon_vertices[p.first_vertex + i]);
+      return sum / double(p.vertex_count);
+    }
+    case PrimitiveKind::Count:
+      break;
+  }
+  return dvec3(0.0);
+}
+
+void move_primitive(Geometry& g, std::uint32_t id, const glm::dvec3& delta) {
+  switch (g.kind_of(id)) {
+    case PrimitiveKind::Sphere: {
+      Sphere& s = g.spheres[id - g.first_id[0]];
+      s.center = moved(s.center, delta);
+      break;
+    }
+    case PrimitiveKind::Triangle: {
+      Triangle& t = g.triangles[id - g.first_id[1]];
+      t.p0 = moved(t.p0, delta);
+      t.p1 = moved(t.p1, delta);
+      t.p2 = moved(t.p2, delta);
+      break;
+    }
+    case PrimitiveKind::Box: {
+      Box& b = g.boxes[id - g.first_id[2]];
+      b.lo = moved(b.lo, delta);
+      b.hi = moved(b.hi, delta);
+      break;
+    }
+    case PrimitiveKind::Cone: {
+      Cone& c = g.cones[id - g.first_id[3]];
+      c.base = moved(c.base, delta);
+      break;
+    }
+    case PrimitiveKind::Polygon: {
+      const Polygon& p = g.polygons[id - g.first_id[4]];
+      for (std::uint32_t i = 0; i < p.vertex_count; ++i)
+        g.polygon_vertices[p.first_vertex + i] = moved(g.polygon_vertices[p.first_vertex + i], delta);
+      break;
+    }
+    case PrimitiveKind::Count:
+      break;
+  }
+}
+
+void append_copies(Geometry& g, const std::vector<glm::dvec3>& shifts, bool copy_planes) {
+  const Geometry original = g;
+  const std::uint32_t n = original.bounded_count();
+  // Per kind, append the copies right after the originals; then move each copy by its shift.
+  g.spheres.insert(g.spheres.end(), original.spheres.begin(), original.spheres.end());
+  g.triangles.insert(g.triangles.end(), original.triangles.begin(), original.triangles.end());
+  g.boxes.insert(g.boxes.end(), original.boxes.begin(), original.boxes.end());
+  g.cones.insert(g.cones.end(), original.cones.begin(), original.cones.end());
+  for (const Polygon& p : original.polygons) {
+    Polygon copy = p;
+    copy.first_vertex = std::uint32_t(g.polygon_vertices.size());
+    for (std::uint32_t i = 0; i < p.vertex_count; ++i)
+      g.polygon_vertices.push_back(original.polygon_vertices[p.first_vertex + i]);
+    g.polygons.push_back(copy);
+  }
+  if (copy_planes) g.planes.insert(g.planes.end(), original.planes.begin(), original.planes.end());
+  g.finalize();
+  for (std::uint32_t id = 0; id < n && id < shifts.size(); ++id) {
+    // The copy of original id k of kind K sits at first_id[K] + count[K] + (k - original first).
+    const auto kind = std::size_t(original.kind_of(id));
+    const std::uint32_t local = id - original.first_id[kind];
+    const std::uint32_t count = original.first_id[kind + 1] - original.first_id[kind];
+    const std::uint32_t copy = g.first_id[kind] + count + local;
+    if (shifts[id] != glm::dvec3(0.0)) move_primitive(g, copy, shifts[id]);
+  }
+}
+
 }  // namespace tracer
