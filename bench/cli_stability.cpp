@@ -50,7 +50,7 @@ int run(const StabilityFlags& f) {
                                    "--integrator");
   o.integrator->params({{"precision", "double"}});  // one that lacks the knob fails here
   parse_resolution(f.resolution, "--resolution", o.width, o.height);
-  o.structures = parse_structures(f.accel.empty() ? default_structures() : f.accel, "--accel");
+  o.structures = parse_checked_structures(f.accel.empty() ? default_structures() : f.accel, "--accel");
   o.variants = select_variants(f.variants, "--variants");
   o.threads = f.threads;
   o.reference = !f.no_reference;

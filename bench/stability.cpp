@@ -114,8 +114,8 @@ std::string signed_percent(double fraction) {
 
 }  // namespace
 
-std::vector<StructureSpec> parse_structures(const std::string& list, const std::string& flag) {
-  std::vector<StructureSpec> out;
+std::vector<CheckedStructure> parse_checked_structures(const std::string& list, const std::string& flag) {
+  std::vector<CheckedStructure> out;
   const std::vector<std::string> names = accel::accel_names();
   std::size_t start = 0;
   while (start <= list.size()) {
@@ -123,7 +123,7 @@ std::vector<StructureSpec> parse_structures(const std::string& list, const std::
     const std::string entry = list.substr(start, comma - start);
     start = comma + 1;
     if (entry.empty()) continue;
-    StructureSpec s;
+    CheckedStructure s;
     s.label = entry;
     s.params = json::object();
     std::size_t colon = entry.find(':');
@@ -192,7 +192,7 @@ json run_stability(const tracer::Scene& scene, const StabilityOptions& o, std::o
                "pixel's largest channel (taken as at least 0.01)"},
               {"machine", machine_info()}};
   json labels = json::array();
-  for (const StructureSpec& s : o.structures) labels.push_back(s.label);
+  for (const CheckedStructure& s : o.structures) labels.push_back(s.label);
   doc["structures"] = labels;
 
   std::optional<Rendered> base_float, base_double;
@@ -254,7 +254,7 @@ json run_stability(const tracer::Scene& scene, const StabilityOptions& o, std::o
 
     json structures = json::array();
     progress << ", " << o.structures.size() << " structures" << std::flush;
-    for (const StructureSpec& s : o.structures) {
+    for (const CheckedStructure& s : o.structures) {
       const accel::AnyAccel built = accel::make_accel(s.name, s.params, boxes);
       const Rendered r = render_once(scene_v, built, o, tracer::Precision::Float);
       const bool same_image = r.result.image == f.result.image;

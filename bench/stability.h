@@ -17,7 +17,7 @@
 namespace bench {
 
 /// One structure to check against naive: a factory name and its knobs.
-struct StructureSpec {
+struct CheckedStructure {
   std::string label;       ///< As written: "kdtree", "kdtree:split=sah".
   std::string name;        ///< Factory name.
   nlohmann::json params;   ///< Its knobs (an object).
@@ -26,7 +26,7 @@ struct StructureSpec {
 /// The structures of `list`: comma-separated entries NAME or NAME:KNOB=VALUE[:KNOB=VALUE...]
 /// (a VALUE that parses as a number is a number). Throws std::runtime_error naming `flag` for
 /// an unknown or unbuilt structure; knobs are checked when the structure is built.
-std::vector<StructureSpec> parse_structures(const std::string& list, const std::string& flag);
+std::vector<CheckedStructure> parse_checked_structures(const std::string& list, const std::string& flag);
 
 /// Every built structure but naive, with the octree's every_level placement and the kd-tree's
 /// SAH split as extra entries.
@@ -35,7 +35,7 @@ std::string default_structures();
 struct StabilityOptions {
   std::string scene_label;                 ///< Scene file, as given (recorded in the JSON).
   const tracer::Integrator* integrator = nullptr;  ///< whitted or spd (bench/integrators.h).
-  std::vector<StructureSpec> structures;   ///< Checked against naive on every variant.
+  std::vector<CheckedStructure> structures;   ///< Checked against naive on every variant.
   std::vector<StabilityVariant> variants;  ///< Base first.
   int width = 96;                          ///< Image width, pixels.
   int height = 72;                         ///< Image height, pixels.
