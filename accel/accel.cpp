@@ -115,6 +115,14 @@ AnyAccel make_accel(std::string_view name, const nlohmann::json& params,
   return std::move(*built);
 }
 
+void attach_spheres(AnyAccel& a, std::span<const SphereShape> spheres) {
+  std::visit(
+      [&](auto& s) {
+        if constexpr (requires { s.attach_spheres(spheres); }) s.attach_spheres(spheres);
+      },
+      static_cast<StructureVariant&>(a));
+}
+
 nlohmann::json params_of(const AnyAccel& a) {
   nlohmann::json j = std::visit(
       [](const auto& s) -> nlohmann::json {

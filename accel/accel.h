@@ -74,6 +74,11 @@ void check_knob_name(std::string_view name, const std::string& knob);
 AnyAccel make_accel(std::string_view name, const nlohmann::json& params,
                     std::span<const Aabb> boxes, const BuildLimits& limits = {});
 
+/// Hands a sphere-only scene's spheres (spheres[i] is primitive i) to the built structure when
+/// its leaves can test spheres in SIMD (bvh4, bvh8); other structures ignore them. The time
+/// is added to the structure's build_ms.
+void attach_spheres(AnyAccel& a, std::span<const SphereShape> spheres);
+
 /// The exact parameters a built structure used, every knob spelled out, plus "selected_by"
 /// when a selector chose it.
 nlohmann::json params_of(const AnyAccel& a);

@@ -11,6 +11,7 @@
 #include "naive.h"
 #include "octree.h"
 #include "traversal.h"
+#include "wide_bvh/wide_bvh.h"
 
 #include <type_traits>
 #include <variant>
@@ -22,7 +23,7 @@ struct TypeList {};
 
 /// Every registered entry, in display order: the structures, a structure compiled out of this
 /// build (it has kMissing), and selectors (kSelector) that pick one of the structures.
-using Registry = TypeList<Naive, Octree, KdTree, Bvh, EmbreeAccel, AutoSelect>;
+using Registry = TypeList<Naive, Octree, KdTree, Bvh, Bvh4, Bvh8, EmbreeAccel, AutoSelect>;
 
 /// An entry that chooses among the structures instead of being one (`auto`).
 template <class E>

@@ -1,10 +1,13 @@
 // Google Benchmark: closest-hit tracing through every structure on the paper's scenes, one
-// thread, 1024x768 camera rays (coherent) and rays spawned off the camera hits (incoherent),
-// plus build times over a grid of knobs.
+// thread, 1024x768 camera rays (coherent) and rays spawned off the camera hits (incoherent);
+// any-hit queries of the shadow rays from the camera hits to every light (shadow); whole
+// renders (Render/: Whitted on spheres8000 at 1024x768, the SPD scenes at 256x256, all ray
+// kinds, one thread); plus build times over a grid of knobs.
 //
 // Every structure's hits are validated against naive before it is timed: all rays, same
 // primitive, bit-equal t. A mismatch skips that benchmark with an error and makes the binary
-// exit non-zero. Naive's reference pass (8000 spheres x 786k rays, about 7 s) is computed once
+// exit non-zero. A whole render is validated by rendering a window of the image through naive
+// and through the structure: every pixel bit-equal. Naive's reference pass (8000 spheres x 786k rays, about 7 s) is computed once
 // per process and shared; naive itself is timed on every 64th ray of spheres8000, which is what
 // its rate and the speedup counters are based on (the counter names say so). Times and rates
 // are CPU time of the tracing thread, so other processes on a shared machine do not count.
@@ -16,6 +19,8 @@
 #include "tracer/camera.h"
 #include "tracer/intersector.h"
 #include "tracer/offset_ray.h"
+#include "tracer/render.h"
+#include "tracer/scene_io.h"
 
 #include <benchmark/benchmark.h>
 
@@ -25,6 +30,8 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cstring>
+#include <filesystem>
 #include <ctime>
 #include <map>
 #include <memory>
@@ -46,8 +53,11 @@ constexpr std::size_t kNaiveStride = 64;
 
 int g_validation_failures = 0;
 
-enum class RaySet { Coherent, Incoherent };
-const char* ray_set_name(RaySet s) { return s == RaySet::Coherent ? "coherent" : "incoherent"; }
+/// Camera rays, rays spawned off their hits, and shadow rays (any-hit queries) to the lights.
+enum class RaySet { Coherent, Incoherent, Shadow };
+const char* ray_set_name(RaySet s) {
+  return s == RaySet::Coherent ? "coherent" : s == RaySet::Incoherent ? "incoherent" : "shadow";
+}
 
 /// Traces `rays` (closest hit) through one structure; the render loop is compiled per structure.
 void trace(const tracer::Geometry& geometry, const accel::AnyAccel& a, const std::vector<Ray>& rays,
@@ -55,6 +65,15 @@ void trace(const tracer::Geometry& geometry, const accel::AnyAccel& a, const std
   hits.resize(rays.size());
   tracer::with_intersector(geometry, a, false, [&](const auto& isect) {
     for (std::size_t i = 0; i < rays.size(); ++i) hits[i] = isect.closest(rays[i]);
+  });
+}
+
+/// Answers any-hit queries of `rays` through one structure: 1 where something blocks the ray.
+void occlude(const tracer::Geometry& geometry, const accel::AnyAccel& a, const std::vector<Ray>& rays,
+             std::vector<std::uint8_t>& blocked) {
+  blocked.resize(rays.size());
+  tracer::with_intersector(geometry, a, false, [&](const auto& isect) {
+    for (std::size_t i = 0; i < rays.size(); ++i) blocked[i] = isect.occluded(rays[i]);
   });
 }
 
@@ -73,7 +92,8 @@ double thread_cpu_seconds() {
 /// One ray set of one scene with its naive reference, computed on first use.
 struct RayData {
   std::vector<Ray> rays;
-  std::vector<Hit> reference;       ///< naive's hits, for validation.
+  std::vector<Hit> reference;       ///< naive's hits, for validation (closest-hit sets).
+  std::vector<std::uint8_t> blocked;  ///< naive's any-hit answers, for validation (shadow set).
   std::vector<Ray> naive_sample;    ///< The rays naive is timed on.
   double naive_s_per_ray = 0.0;     ///< naive's best time per ray on the sample.
   std::size_t naive_stride = 1;
@@ -119,12 +139,31 @@ std::vector<Ray> spawned_rays(const tracer::Geometry& g, const std::vector<Ray>&
   return out;
 }
 
+/// Shadow rays as the Whitted integrator casts them: from every bounded camera hit to every
+/// light on its side, leaving on the lit side and ending just short of the light.
+std::vector<Ray> shadow_rays(const tracer::Scene& scene, const std::vector<Ray>& primary, const std::vector<Hit>& hits) {
+  const tracer::Geometry& g = scene.geometry;
+  std::vector<Ray> out;
+  for (std::size_t i = 0; i < primary.size(); ++i) {
+    if (!hits[i].found() || hits[i].is_plane()) continue;
+    const tracer::SurfacePoint sp = tracer::surface_point(g, primary[i], hits[i]);
+    const Vec3 n = glm::dot(sp.n_geo, primary[i].dir) > 0.0f ? -sp.n_geo : sp.n_geo;
+    const Vec3 origin = tracer::offset_ray_origin(sp, n);
+    for (const tracer::PointLight& light : scene.lights)
+      if (glm::dot(light.position - sp.p, n) > 0.0f) out.push_back(tracer::segment_to(origin, light.position));
+  }
+  return out;
+}
+
+/// A benchmark scene by name: a generator's name, or random1M (a million random spheres).
 BenchScene& scene_named(const std::string& name) {
   static std::map<std::string, std::unique_ptr<BenchScene>> cache;
   auto& slot = cache[name];
   if (!slot) {
     slot = std::make_unique<BenchScene>();
-    slot->scene = scenes_gen::generate(name, scenes_gen::GenOptions{});
+    scenes_gen::GenOptions gen;
+    if (name == "random1M") gen.count = 1'000'000;
+    slot->scene = scenes_gen::generate(name == "random1M" ? "random" : name, gen);
     slot->boxes = slot->scene.geometry.primitive_bounds();
   }
   return *slot;
@@ -138,24 +177,35 @@ RayData& ray_data(const std::string& scene_name, RaySet set) {
   auto d = std::make_unique<RayData>();
   if (set == RaySet::Coherent) {
     d->rays = camera_rays(bs.scene);
-  } else {
+  } else if (set == RaySet::Incoherent) {
     const RayData& primary = ray_data(scene_name, RaySet::Coherent);
     d->rays = spawned_rays(bs.scene.geometry, primary.rays, primary.reference);
+  } else {
+    const RayData& primary = ray_data(scene_name, RaySet::Coherent);
+    d->rays = shadow_rays(bs.scene, primary.rays, primary.reference);
   }
+  const bool any_hit = set == RaySet::Shadow;
   const accel::AnyAccel naive = accel::make_accel("naive", nullptr, bs.boxes);
   const auto t0 = std::chrono::steady_clock::now();
   std::fprintf(stderr, "bench_trace: naive reference for %s/%s (%zu rays)...\n", scene_name.c_str(),
                ray_set_name(set), d->rays.size());
-  trace(bs.scene.geometry, naive, d->rays, d->reference);
+  if (any_hit)
+    occlude(bs.scene.geometry, naive, d->rays, d->blocked);
+  else
+    trace(bs.scene.geometry, naive, d->rays, d->reference);
   std::fprintf(stderr, "bench_trace: done in %.1f s\n", seconds_since(t0));
 
   d->naive_stride = bs.boxes.size() > 1000 ? kNaiveStride : 1;
   for (std::size_t i = 0; i < d->rays.size(); i += d->naive_stride) d->naive_sample.push_back(d->rays[i]);
   std::vector<Hit> scratch;
+  std::vector<std::uint8_t> scratch_blocked;
   double best = 1e30;
   for (int rep = 0; rep < 3; ++rep) {
     const double t1 = thread_cpu_seconds();
-    trace(bs.scene.geometry, naive, d->naive_sample, scratch);
+    if (any_hit)
+      occlude(bs.scene.geometry, naive, d->naive_sample, scratch_blocked);
+    else
+      trace(bs.scene.geometry, naive, d->naive_sample, scratch);
     best = std::min(best, thread_cpu_seconds() - t1);
   }
   d->naive_s_per_ray = best / double(d->naive_sample.size());
@@ -177,6 +227,7 @@ bool build_or_skip(benchmark::State& state, const std::string& name, const json&
                    const BenchScene& bs, accel::AnyAccel& out) {
   try {
     out = accel::make_accel(name, knobs, bs.boxes);
+    tracer::attach_geometry(out, bs.scene.geometry);
     return true;
   } catch (const accel::ConfigError& e) {
     state.SkipWithError(e.what());
@@ -184,7 +235,8 @@ bool build_or_skip(benchmark::State& state, const std::string& name, const json&
   }
 }
 
-/// Times closest-hit tracing of one ray set through one structure, after validating it.
+/// Times closest-hit tracing (any-hit queries for the shadow set) of one ray set through one
+/// structure, after validating it.
 void bm_trace(benchmark::State& state, const std::string& scene_name, RaySet set,
               const std::string& name, const json& knobs) {
   BenchScene& bs = scene_named(scene_name);
@@ -194,10 +246,19 @@ void bm_trace(benchmark::State& state, const std::string& scene_name, RaySet set
   const bool is_naive = name == "naive";
   const std::vector<Ray>& rays = is_naive ? d.naive_sample : d.rays;
 
+  const bool any_hit = set == RaySet::Shadow;
   std::vector<Hit> hits;
+  std::vector<std::uint8_t> blocked;
   if (!is_naive) {
-    trace(bs.scene.geometry, a, rays, hits);
-    if (const std::size_t bad = mismatches(hits, d.reference)) {
+    std::size_t bad = 0;
+    if (any_hit) {
+      occlude(bs.scene.geometry, a, rays, blocked);
+      for (std::size_t i = 0; i < rays.size(); ++i) bad += blocked[i] != d.blocked[i];
+    } else {
+      trace(bs.scene.geometry, a, rays, hits);
+      bad = mismatches(hits, d.reference);
+    }
+    if (bad) {
       ++g_validation_failures;
       state.SkipWithError(("validation failed: " + std::to_string(bad) + " of " +
                            std::to_string(rays.size()) + " rays differ from naive")
@@ -207,8 +268,13 @@ void bm_trace(benchmark::State& state, const std::string& scene_name, RaySet set
   }
   const double cpu0 = thread_cpu_seconds();
   for (auto _ : state) {
-    trace(bs.scene.geometry, a, rays, hits);
-    benchmark::DoNotOptimize(hits.data());
+    if (any_hit) {
+      occlude(bs.scene.geometry, a, rays, blocked);
+      benchmark::DoNotOptimize(blocked.data());
+    } else {
+      trace(bs.scene.geometry, a, rays, hits);
+      benchmark::DoNotOptimize(hits.data());
+    }
     benchmark::ClobberMemory();
   }
   const double cpu = thread_cpu_seconds() - cpu0;
@@ -218,6 +284,82 @@ void bm_trace(benchmark::State& state, const std::string& scene_name, RaySet set
   const std::string sample = "(naive_on_1/" + std::to_string(d.naive_stride) + "_of_rays)";
   // naive's CPU time per ray over this structure's, each from its own timing.
   state.counters["speedup_vs_naive" + sample] = cpu > 0.0 ? d.naive_s_per_ray * n / cpu : 0.0;
+  state.SetLabel(accel::name_of(a) + " " + accel::params_of(a).dump());
+}
+
+/// CPU time of the whole process, seconds: a render's worker threads included, other
+/// processes excluded.
+double process_cpu_seconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
+}
+
+/// A whole-render workload: a scene, its integrator and the image size.
+struct RenderCase {
+  std::string label;   ///< Benchmark name part: scene name or SPD file stem.
+  std::string path;    ///< Scene file; empty for a generated scene (label).
+  bool spd = false;    ///< SPD rules (spd integrator) instead of Whitted.
+  int width = 0, height = 0;
+};
+
+/// The scene of a render case with its boxes, loaded once.
+BenchScene& render_scene(const RenderCase& rc) {
+  if (rc.path.empty()) return scene_named(rc.label);
+  static std::map<std::string, std::unique_ptr<BenchScene>> cache;
+  auto& slot = cache[rc.path];
+  if (!slot) {
+    slot = std::make_unique<BenchScene>();
+    slot->scene = tracer::load_scene_file(rc.path);
+    slot->boxes = slot->scene.geometry.primitive_bounds();
+  }
+  return *slot;
+}
+
+/// One thread, the whole image, all ray kinds; the image window in the middle of the frame is
+/// first rendered through naive and the structure and must be bit-equal. Times are the
+/// process's CPU time per render (manual time), so other processes do not count.
+void bm_render(benchmark::State& state, const RenderCase& rc, const std::string& name, const json& knobs) {
+  BenchScene* bs = nullptr;
+  try {
+    bs = &render_scene(rc);
+  } catch (const std::exception& e) {
+    state.SkipWithError(e.what());
+    return;
+  }
+  accel::AnyAccel a;
+  if (!build_or_skip(state, name, knobs, *bs, a)) return;
+  const tracer::Integrator& integrator = rc.spd ? tracer::spd_integrator() : tracer::whitted_integrator();
+  tracer::RenderOptions options;
+  options.threads = 1;
+  options.width = rc.width;
+  options.height = rc.height;
+
+  // Validation window: 48 x 48 pixels at the centre.
+  tracer::RenderOptions window = options;
+  window.window = {rc.width / 2 - 24, rc.height / 2 - 24, rc.width / 2 + 24, rc.height / 2 + 24};
+  static std::map<std::string, tracer::Image> naive_windows;
+  auto& want = naive_windows[rc.label];
+  if (want.pixels().empty()) {
+    accel::AnyAccel naive = accel::make_accel("naive", nullptr, bs->boxes);
+    want = tracer::render(bs->scene, naive, window, integrator).image;
+  }
+  const tracer::Image got = tracer::render(bs->scene, a, window, integrator).image;
+  if (got.pixels().size() != want.pixels().size() ||
+      std::memcmp(got.pixels().data(), want.pixels().data(), want.pixels().size() * sizeof(tracer::Image::Pixel)) != 0) {
+    ++g_validation_failures;
+    state.SkipWithError("validation failed: the centre window differs from naive's render");
+    return;
+  }
+  std::uint64_t rays = 0;
+  for (auto _ : state) {
+    const double t0 = process_cpu_seconds();
+    const tracer::RenderResult r = tracer::render(bs->scene, a, options, integrator);
+    state.SetIterationTime(process_cpu_seconds() - t0);
+    rays = r.rays.total();
+    benchmark::DoNotOptimize(r.image.pixels().data());
+  }
+  state.counters["rays_per_render"] = double(rays);
   state.SetLabel(accel::name_of(a) + " " + accel::params_of(a).dump());
 }
 
@@ -231,6 +373,7 @@ void bm_build(benchmark::State& state, const std::string& scene_name, const std:
   if (!build_or_skip(state, name, knobs, bs, a)) return;
   for (auto _ : state) {
     a = accel::make_accel(name, knobs, bs.boxes);
+    tracer::attach_geometry(a, bs.scene.geometry);
     benchmark::DoNotOptimize(&a);
   }
   const accel::BuildStats& s = accel::stats_of(a);
@@ -238,6 +381,25 @@ void bm_build(benchmark::State& state, const std::string& scene_name, const std:
   state.counters["sah_cost"] = s.sah_cost;
   state.counters["duplication"] = s.duplication();
   state.counters["memory_MiB"] = double(s.memory_bytes) / double(1 << 20);
+}
+
+/// Times building one structure at its default knobs, the scene's spheres attached (what a
+/// render builds); memory per primitive as a counter.
+void bm_build_default(benchmark::State& state, const std::string& scene_name, const std::string& name,
+                      const json& knobs) {
+  const BenchScene& bs = scene_named(scene_name);
+  accel::AnyAccel a;
+  if (!build_or_skip(state, name, knobs, bs, a)) return;
+  for (auto _ : state) {
+    a = accel::AnyAccel();
+    a = accel::make_accel(name, knobs, bs.boxes);
+    tracer::attach_geometry(a, bs.scene.geometry);
+    benchmark::DoNotOptimize(&a);
+  }
+  const accel::BuildStats& s = accel::stats_of(a);
+  state.counters["nodes"] = double(s.nodes);
+  state.counters["bytes_per_prim"] = double(s.memory_bytes) / double(std::max<std::size_t>(bs.boxes.size(), 1));
+  state.SetLabel(accel::name_of(a) + " " + accel::params_of(a).dump());
 }
 
 /// Trace time over the tree knobs (max_depth, max_leaf_size) from the benchmark arguments.
@@ -294,6 +456,32 @@ void register_benchmarks() {
         benchmark::RegisterBenchmark(bm.c_str(), bm_trace, std::string(scene), set, c.name, c.knobs)
             ->Unit(benchmark::kMillisecond);
       }
+  for (const char* scene : {"spheres8000", "five"})
+    for (const Config& c : trace_configs()) {
+      const std::string bm = std::string("Trace/") + scene + "/shadow/" + c.label;
+      benchmark::RegisterBenchmark(bm.c_str(), bm_trace, std::string(scene), RaySet::Shadow, c.name, c.knobs)
+          ->Unit(benchmark::kMillisecond);
+    }
+  // Whole renders: spheres8000 (Whitted, 1024x768) and every SPD scene (256x256).
+  std::vector<RenderCase> renders = {{"spheres8000", "", false, kWidth, kHeight}};
+  const std::filesystem::path spd_dir = ACCELBENCH_SPD_DIR;
+  std::vector<std::filesystem::path> spd_files;
+  std::error_code ec;
+  for (const auto& entry : std::filesystem::directory_iterator(spd_dir, ec))
+    if (entry.path().extension() == ".nff") spd_files.push_back(entry.path());
+  if (ec) std::fprintf(stderr, "bench_trace: no SPD scenes (%s: %s); their Render benchmarks are left out\n",
+                       spd_dir.string().c_str(), ec.message().c_str());
+  std::sort(spd_files.begin(), spd_files.end());
+  for (const auto& f : spd_files) renders.push_back({f.stem().string(), f.string(), true, 256, 256});
+  for (const RenderCase& rc : renders)
+    for (const Config& c : trace_configs()) {
+      if (c.name == "naive") continue;  // hours per render
+      const std::string bm = "Render/" + rc.label + "/" + c.label;
+      benchmark::RegisterBenchmark(bm.c_str(), bm_render, rc, c.name, c.knobs)
+          ->UseManualTime()
+          ->Iterations(rc.path.empty() ? 1 : 3)
+          ->Unit(benchmark::kMillisecond);
+    }
   for (const Config& c : tree_configs()) {
     const std::string bm = "TraceKnobs/spheres8000/coherent/" + c.label;
     benchmark::RegisterBenchmark(bm.c_str(), bm_trace_knobs, c.name, c.knobs)
@@ -301,6 +489,15 @@ void register_benchmarks() {
         ->ArgsProduct({{8, 16, 64}, {1, 4, 16}})
         ->Unit(benchmark::kMillisecond);
   }
+  // Build time at default knobs, every structure (Embree included), and on a million spheres.
+  for (const char* scene : {"spheres8000", "random1M"})
+    for (const Config& c : trace_configs()) {
+      if (std::string(scene) == "random1M" && c.name != "bvh" && c.name != "bvh4" && c.name != "bvh8" && c.name != "embree")
+        continue;
+      const std::string bm = std::string("BuildDefault/") + scene + "/" + c.label;
+      benchmark::RegisterBenchmark(bm.c_str(), bm_build_default, std::string(scene), c.name, c.knobs)
+          ->Unit(benchmark::kMillisecond);
+    }
   // Build time over the tree knobs; the BVH's target is <= 5 ms at (64, 4) for spheres8000.
   for (const Config& c : tree_configs()) {
     const std::string bm = "Build/spheres8000/" + c.label;

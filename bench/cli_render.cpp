@@ -6,6 +6,7 @@
 #include "integrators.h"
 
 #include "accel/accel.h"
+#include "tracer/intersector.h"
 #include "tracer/render.h"
 #include "tracer/scene_io.h"
 
@@ -142,7 +143,8 @@ int run_render(const RenderFlags& f) {
   // Built before anything is printed, so that a bad knob is the only line of output.
   const auto boxes = scene.geometry.primitive_bounds();
   const auto build_start = std::chrono::steady_clock::now();
-  const accel::AnyAccel structure = accel::make_accel(accel_name, params, boxes, limits);
+  accel::AnyAccel structure = accel::make_accel(accel_name, params, boxes, limits);
+  tracer::attach_geometry(structure, scene.geometry);
   const double build_ms = ms_since(build_start);
   const accel::BuildStats& build = accel::stats_of(structure);
 

@@ -3,6 +3,7 @@
 #include "integrators.h"
 
 #include "tracer/image.h"
+#include "tracer/intersector.h"
 #include "tracer/parallel.h"
 #include "tracer/render.h"
 
@@ -74,6 +75,7 @@ Prepared prepare(const tracer::Scene& scene, std::span<const accel::Aabb> boxes,
   const auto t_build = Clock::now();
   try {
     p.built = accel::make_accel(structure, params, boxes, options.limits);
+    tracer::attach_geometry(p.built, scene.geometry);
   } catch (const std::bad_alloc&) {
     m.spent_build_s = seconds_since(t_build);
     m.status = RowStatus::Failed;

@@ -94,9 +94,12 @@ TEST(Registry, BenchmarksCoverEveryBuiltStructure) {
   ASSERT_EQ(list.status, 0) << list.output;
   for (const accel::StructureInfo& s : accel::structures()) {
     if (!s.built) continue;
-    for (const char* set : {"coherent", "incoherent"})
+    for (const char* set : {"coherent", "incoherent", "shadow"})
       EXPECT_NE(list.output.find("Trace/spheres8000/" + std::string(set) + "/" + s.name + "\n"), std::string::npos)
           << s.name;
+    if (s.name != "naive") {
+      EXPECT_NE(list.output.find("Render/spheres8000/" + s.name + "/"), std::string::npos) << s.name;
+    }
   }
 #else
   GTEST_SKIP() << "bench_trace is not built (ACCELBENCH_BENCHMARKS=OFF)";

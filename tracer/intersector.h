@@ -13,6 +13,7 @@
 
 #include <cstdint>
 #include <variant>
+#include <vector>
 
 namespace tracer {
 
@@ -57,17 +58,7 @@ class Intersector {
         hit = {t, Hit::kPlaneBit | i};
       }
     }
-    const Geometry& geo = *geo_;
-    auto leaf = [&geo, &hit](std::uint32_t id, Ray& r) {
-      const float t = geo.intersect_bounded<Kinds>(id, r);
-      // Plane ids carry kPlaneBit, so at an exact tie a bounded primitive wins over a plane.
-      if (t < r.tmax || (t == r.tmax && t < accel::kInfinity && id < hit.prim)) {
-        r.tmax = t;
-        hit = {t, id};
-        return true;
-      }
-      return false;
-    };
+    ClosestLeaf leaf{geo_, &hit};
     structure_->template intersect<Count>(ray, leaf, counters_);
     return hit;
   }
@@ -76,20 +67,64 @@ class Intersector {
   bool occluded(const Ray& ray) const {
     for (const Plane& pl : geo_->planes)
       if (intersect(pl, ray) < ray.tmax) return true;
-    const Geometry& geo = *geo_;
-    auto leaf = [&geo](std::uint32_t id, Ray& r) {
-      return geo.intersect_bounded<Kinds>(id, r) < r.tmax;
-    };
+    AnyLeaf leaf{geo_};
     return structure_->template occluded<Count>(ray, leaf, counters_);
   }
 
   const Geometry& geometry() const { return *geo_; }
 
  private:
+  // The leaf functions of the traversal contract. accept() takes a t the structure computed
+  // itself with the same routine (SIMD sphere leaves, accel/sphere_soa.h); it exists only for
+  // sphere-only scenes, where every id is a sphere.
+  static constexpr bool kSpheresOnly = Kinds == KindSet::SpheresOnly;
+
+  /// Closest hit: keeps the nearest, ties to the lower id.
+  struct ClosestLeaf {
+    const Geometry* geo;
+    Hit* hit;
+    bool keep(std::uint32_t id, float t, Ray& r) const {
+      // Plane ids carry kPlaneBit, so at an exact tie a bounded primitive wins over a plane.
+      if (t < r.tmax || (t == r.tmax && t < accel::kInfinity && id < hit->prim)) {
+        r.tmax = t;
+        *hit = {t, id};
+        return true;
+      }
+      return false;
+    }
+    bool operator()(std::uint32_t id, Ray& r) const { return keep(id, geo->template intersect_bounded<Kinds>(id, r), r); }
+    bool accept(std::uint32_t id, float t, Ray& r) const
+      requires kSpheresOnly
+    {
+      return keep(id, t, r);
+    }
+  };
+
+  /// Any hit: anything before tmax.
+  struct AnyLeaf {
+    const Geometry* geo;
+    bool operator()(std::uint32_t id, Ray& r) const { return geo->template intersect_bounded<Kinds>(id, r) < r.tmax; }
+    bool accept(std::uint32_t, float t, Ray& r) const
+      requires kSpheresOnly
+    {
+      return t < r.tmax;
+    }
+  };
+
   const Geometry* geo_;
   const Structure* structure_;
   accel::TraversalCounters* counters_;
 };
+
+/// Gives a structure built over geometry.primitive_bounds() what it needs of the primitives
+/// themselves: the spheres of a sphere-only scene, for structures with SIMD sphere leaves.
+inline void attach_geometry(accel::AnyAccel& a, const Geometry& geometry) {
+  if (geometry.bounded_count() != geometry.spheres.size() || geometry.spheres.empty()) return;
+  std::vector<accel::SphereShape> shapes;
+  shapes.reserve(geometry.spheres.size());
+  for (const Sphere& s : geometry.spheres) shapes.push_back({s.center, s.radius});
+  accel::attach_spheres(a, shapes);
+}
 
 /// Calls fn(intersector) with the intersector specialised for this structure, this scene's kind
 /// set and the counting flag. Everything fn instantiates is compiled once per combination.

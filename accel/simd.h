@@ -1,0 +1,47 @@
+#pragma once
+// The SIMD vocabulary of the structures, on xsimd (Debian's libxsimd-dev): fixed-width float
+// batches picked from the instruction sets this build targets, and a lane mask as bits. Every
+// SIMD kernel is written once against these names and compiles for AVX-512, AVX2 and plain
+// SSE2 (ACCELBENCH_NATIVE=OFF) alike.
+
+#include <xsimd/xsimd.hpp>
+
+#include <bit>
+#include <cstdint>
+#include <type_traits>
+
+namespace accel::simd {
+
+/// A batch of exactly N floats on the best instruction set this build has for that width, or
+/// void when none has it (8 lanes need AVX).
+template <int N>
+using FloatN = xsimd::make_sized_batch_t<float, std::size_t(N)>;
+
+/// 4 floats (SSE2 and up, so every x86-64 build).
+using Float4 = FloatN<4>;
+static_assert(!std::is_void_v<Float4>, "xsimd offers no 4-float batch for this target");
+
+/// The widest of 8 and 4 lanes this build has: what leaf tests run on.
+using FloatLeaf = std::conditional_t<std::is_void_v<FloatN<8>>, Float4, FloatN<8>>;
+
+/// Bit i set where lane i of `m` is true: one movemask on SSE and AVX batches.
+template <class Batch>
+inline std::uint32_t mask_bits(const typename Batch::batch_bool_type& m) {
+  using Arch = typename Batch::arch_type;
+  if constexpr (Batch::size == 8 && std::is_base_of_v<xsimd::avx, Arch>) {
+    return std::uint32_t(_mm256_movemask_ps(m));
+  } else if constexpr (Batch::size == 4 && std::is_base_of_v<xsimd::sse2, Arch>) {
+    return std::uint32_t(_mm_movemask_ps(m));
+  } else {
+    alignas(64) float lanes[Batch::size];
+    xsimd::select(m, Batch(1.0f), Batch(0.0f)).store_aligned(lanes);
+    std::uint32_t bits = 0;
+    for (std::size_t i = 0; i < Batch::size; ++i) bits |= std::uint32_t(lanes[i] != 0.0f) << i;
+    return bits;
+  }
+}
+
+/// Index of the lowest set bit of a non-zero mask.
+inline int first_lane(std::uint32_t bits) { return std::countr_zero(bits); }
+
+}  // namespace accel::simd

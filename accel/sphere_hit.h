@@ -1,0 +1,72 @@
+#pragma once
+// The one ray-sphere routine: the scalar version every structure reaches through the tracer's
+// leaf function, and the same operations lane by lane on a batch of spheres (the SIMD leaf
+// tests). Both give the same t to the bit: every lane performs exactly the scalar routine's
+// operations, in the same order, and the build forbids FMA contraction (-ffp-contract=off).
+
+#include "geometry.h"
+#include "simd.h"
+
+#include <cmath>
+#include <utility>
+
+namespace accel {
+
+/// A sphere as the structures see it: enough to test a ray against it, nothing about shading.
+struct SphereShape {
+  Vec3 center{0.0f};  ///< Centre, world units.
+  float radius = 1.0f;  ///< Radius, world units (> 0).
+};
+
+/// Nearest root t > tmin of |org + t dir - center| = radius, or +inf when there is none.
+///
+/// The discriminant is computed as a (r^2 - |f - (f.d / a) d|^2), which keeps its precision when
+/// the sphere is many radii away, where b^2 - ac cancels to noise; the roots use the stable form
+/// q = -b - sign(b) sqrt(disc), t0 = c / q, t1 = q / a (Ray Tracing Gems, ch. 7).
+inline float intersect_sphere(const Vec3& center, float radius, const Ray& ray) {
+  const Vec3 f = ray.org - center;
+  const float a = glm::dot(ray.dir, ray.dir);
+  const float b = glm::dot(f, ray.dir);  // half of the usual b
+  const Vec3 l = f - (b / a) * ray.dir;
+  const float r2 = radius * radius;
+  const float disc = a * (r2 - glm::dot(l, l));
+  if (!(disc >= 0.0f)) return kInfinity;
+  const float c = glm::dot(f, f) - r2;
+  const float q = -b - std::copysign(std::sqrt(disc), b);
+  float t0 = c / q;
+  float t1 = q / a;
+  if (q == 0.0f) t0 = t1 = 0.0f;  // ray origin at the centre of a zero sphere; degenerate
+  if (t0 > t1) std::swap(t0, t1);
+  if (t0 > ray.tmin) return t0;
+  if (t1 > ray.tmin) return t1;
+  return kInfinity;
+}
+
+/// intersect_sphere on Batch::size spheres at once (centres cx, cy, cz, radii r), for one ray.
+/// Lane i equals intersect_sphere(center_i, r_i, ray) bit for bit. glm::dot(u, v) is
+/// (u.x v.x + u.y v.y) + u.z v.z, and that is the order written here.
+template <class Batch>
+inline Batch intersect_spheres(const Batch& cx, const Batch& cy, const Batch& cz, const Batch& r,
+                               const Ray& ray) {
+  const float a = glm::dot(ray.dir, ray.dir);
+  const Batch dx(ray.dir.x), dy(ray.dir.y), dz(ray.dir.z), va(a);
+  const Batch fx = Batch(ray.org.x) - cx, fy = Batch(ray.org.y) - cy, fz = Batch(ray.org.z) - cz;
+  const Batch b = (fx * dx + fy * dy) + fz * dz;
+  const Batch k = b / va;
+  const Batch lx = fx - k * dx, ly = fy - k * dy, lz = fz - k * dz;
+  const Batch r2 = r * r;
+  const Batch disc = va * (r2 - ((lx * lx + ly * ly) + lz * lz));
+  const auto hit = disc >= Batch(0.0f);  // false for NaN, as !(disc >= 0) is true in the scalar
+  const Batch c = ((fx * fx + fy * fy) + fz * fz) - r2;
+  const Batch q = -b - xsimd::copysign(xsimd::sqrt(disc), b);
+  const auto degenerate = q == Batch(0.0f);
+  Batch t0 = xsimd::select(degenerate, Batch(0.0f), c / q);
+  Batch t1 = xsimd::select(degenerate, Batch(0.0f), q / va);
+  const auto swap = t0 > t1;
+  const Batch lo = xsimd::select(swap, t1, t0), hi = xsimd::select(swap, t0, t1);
+  const Batch tmin(ray.tmin), inf(kInfinity);
+  const Batch t = xsimd::select(lo > tmin, lo, xsimd::select(hi > tmin, hi, inf));
+  return xsimd::select(hit, t, inf);
+}
+
+}  // namespace accel
