@@ -43,8 +43,9 @@ struct RenderFlags {
   int max_depth = 0;
   int leaf_size = 0;
   std::vector<std::string> knobs;  ///< --knob NAME=VALUE, any knob of the structure.
-  std::string integrator;  ///< Integrator name (bench/integrators.h); "" = whitted.
+  std::string integrator;  ///< Integrator name (bench/integrators.h); "" = the scene's, or whitted.
   bool spd = false;        ///< Shorthand for --integrator spd.
+  std::vector<std::string> knob_items;  ///< --param NAME=VALUE: the integrator's knobs.
   /// Integrator knob precision: float, or double (the naive reference in double); "" = float.
   std::string precision;
   /// auto | mixed: primitive dispatch (mixed measures the fast path).
@@ -82,13 +83,22 @@ nlohmann::json knob_params(const RenderFlags& f) {
   return params;
 }
 
-/// The integrator of --integrator, or of its shorthand --spd; whitted when neither is given.
-const tracer::Integrator& chosen_integrator(const RenderFlags& f) {
+/// The integrator knobs of --param and --precision.
+nlohmann::json integrator_overrides(const RenderFlags& f) {
+  nlohmann::json knobs = parse_knob_items(f.knob_items, "--param");
+  if (!f.precision.empty()) knobs["precision"] = f.precision;
+  return knobs;
+}
+
+/// The integrator of --integrator (or its shorthand --spd), else the scene's, else whitted; its
+/// knobs from the scene, --param and --precision.
+IntegratorSetup chosen_integrator(const RenderFlags& f, const tracer::Scene& scene) {
   if (f.spd && !f.integrator.empty() && f.integrator != "spd")
     throw std::runtime_error("--spd: is --integrator spd, but --integrator " + f.integrator +
                              " was given");
-  const std::string name = f.spd ? "spd" : f.integrator.empty() ? "whitted" : f.integrator;
-  return integrator_named(name, "--integrator");
+  const std::string name = f.spd ? "spd" : f.integrator;
+  return resolve_integrator(scene, f.scene, name, "--integrator", integrator_overrides(f),
+                            "--param");
 }
 
 double ms_since(std::chrono::steady_clock::time_point start) {
@@ -125,13 +135,13 @@ int run_render(const RenderFlags& f) {
                              ")");
   }
   const nlohmann::json params = knob_params(f);
-  const tracer::Integrator& integrator = chosen_integrator(f);
-  nlohmann::json integrator_knobs = nlohmann::json::object();
-  if (!f.precision.empty()) integrator_knobs["precision"] = f.precision;
-  integrator.params(integrator_knobs);  // a knob the integrator lacks fails before any work
+  integrator_overrides(f);  // its errors before the scene is read
 
   tracer::Scene scene = tracer::load_scene_file(f.scene);
   scene.geometry.force_mixed = f.dispatch == "mixed";
+  options.limits = limits;
+  const IntegratorSetup setup = chosen_integrator(f, scene);
+  const tracer::Integrator& integrator = *setup.integrator;
   const int width = options.width ? options.width : scene.camera.width;
   const int height = options.height ? options.height : scene.camera.height;
   const int threads = tracer::resolve_threads(f.threads);
@@ -163,21 +173,29 @@ int run_render(const RenderFlags& f) {
   if (f.precision == "double")
     std::printf("precision double: the naive loop over every primitive in double; the structure "
                 "is not used\n");
+  if (!setup.params.empty()) std::printf("knobs    %s\n", setup.params.dump().c_str());
+  std::fflush(stdout);
   const tracer::RenderResult result =
-      tracer::render(scene, structure, options, integrator, integrator_knobs);
+      tracer::render(scene, structure, options, integrator, setup.params);
   const tracer::RayCounts& rays = result.rays;
   const double seconds = result.render_ms / 1e3;
   const double rays_per_s = seconds > 0 ? double(rays.total()) / seconds : 0.0;
   const double primary_per_s = seconds > 0 ? double(rays.eye) / seconds : 0.0;
   std::printf("render   %.3f ms\n", result.render_ms);
   std::printf(
-      "rays     eye %llu (hits %llu), reflection %llu, refraction %llu, shadow %llu; total %llu\n",
+      "rays     eye %llu (hits %llu), reflection %llu, refraction %llu, shadow %llu%s; total %llu\n",
       static_cast<unsigned long long>(rays.eye), static_cast<unsigned long long>(rays.eye_hits),
       static_cast<unsigned long long>(rays.reflection),
       static_cast<unsigned long long>(rays.refraction),
-      static_cast<unsigned long long>(rays.shadow), static_cast<unsigned long long>(rays.total()));
+      static_cast<unsigned long long>(rays.shadow),
+      rays.gather + rays.photon == 0
+          ? ""
+          : (", gather " + std::to_string(rays.gather) + ", photon " + std::to_string(rays.photon))
+                .c_str(),
+      static_cast<unsigned long long>(rays.total()));
   std::printf("speed    %srays/s (all rays, shadow rays included), %srays/s primary\n",
               millions(rays_per_s).c_str(), millions(primary_per_s).c_str());
+  if (integrator.summary) std::printf("%s", integrator.summary(result.stats).c_str());
 
   if (!f.png.empty()) result.image.write_png(f.png, f.exposure);
   if (!f.pfm.empty()) result.image.write_pfm(f.pfm);
@@ -187,7 +205,7 @@ int run_render(const RenderFlags& f) {
     tracer::RenderOptions counting = options;
     counting.count_traversal = true;
     const tracer::RenderResult counted =
-        tracer::render(scene, structure, counting, integrator, integrator_knobs);
+        tracer::render(scene, structure, counting, integrator, setup.params);
     if (counted.image.content_hash() != result.image.content_hash() ||
         !(counted.rays == result.rays))
       throw std::runtime_error("the counting pass rendered a different image than the timed pass");
@@ -196,7 +214,8 @@ int run_render(const RenderFlags& f) {
         {"resolution", {width, height}},
         {"samples_per_pixel", scene.camera.samples_per_pixel},
         {"integrator", integrator.name},
-        {"integrator_params", integrator.params(integrator_knobs)},
+        {"integrator_params", setup.params},
+        {"integrator_stats", {{"timed", result.stats}, {"counting", counted.stats}}},
         {"dispatch",
          scene.geometry.kind_set() == tracer::KindSet::SpheresOnly ? "spheres_only" : "mixed"},
         {"threads", threads},
@@ -259,6 +278,10 @@ void add_render_command(CLI::App& app, int& exit_code) {
       "Statistics JSON to write (adds an untimed counting pass for traversal counters)");
   cmd->add_option("--integrator", flags->integrator,
                   "Integrator (default whitted); one of " + integrator_names());
+  cmd->add_option("--param", flags->knob_items,
+                  "Integrator knob NAME=VALUE, repeatable (over the scene's \"integrator\" "
+                  "knobs), e.g. --param global_photons=200000 --param filter=box")
+      ->allow_extra_args(false);
   cmd->add_flag("--spd", flags->spd,
                 "Shorthand for --integrator spd: the SPD test rules (rays at pixel corners, tree "
                 "depth 5, NFF shading; for .nff scenes)");

@@ -1,5 +1,7 @@
 #include "integrators.h"
 
+#include "photon/photon_integrator.h"
+
 #include <array>
 #include <stdexcept>
 
@@ -7,10 +9,11 @@ namespace bench {
 
 namespace {
 
-const std::array<const tracer::Integrator*, 2>& table() {
-  static const std::array<const tracer::Integrator*, 2> kTable = {
+const std::array<const tracer::Integrator*, 3>& table() {
+  static const std::array<const tracer::Integrator*, 3> kTable = {
       &tracer::whitted_integrator(),
       &tracer::spd_integrator(),
+      &photon::photon_integrator(),
   };
   return kTable;
 }
@@ -29,6 +32,52 @@ const tracer::Integrator& integrator_named(std::string_view name, const std::str
   if (const tracer::Integrator* i = find_integrator(name)) return *i;
   throw std::runtime_error(where + ": unknown integrator '" + std::string(name) +
                            "' (known: " + integrator_names() + ")");
+}
+
+IntegratorSetup resolve_integrator(const tracer::Scene& scene, const std::string& scene_label,
+                                   const std::string& name, const std::string& name_where,
+                                   const nlohmann::json& overrides,
+                                   const std::string& overrides_where) {
+  IntegratorSetup setup;
+  const std::string& scene_name = scene.integrator.name;
+  if (!name.empty()) {
+    setup.integrator = &integrator_named(name, name_where);
+  } else if (!scene_name.empty()) {
+    setup.integrator = &integrator_named(scene_name, scene_label + ": /integrator/name");
+  } else {
+    setup.integrator = &integrator_named("whitted", "default");
+  }
+  nlohmann::json knobs = nlohmann::json::object();
+  if (scene_name == setup.integrator->name && scene.integrator.knobs.is_object()) {
+    knobs = scene.integrator.knobs;
+    try {
+      setup.integrator->params(knobs);
+    } catch (const std::exception& e) {
+      throw std::runtime_error(scene_label + ": /integrator: " + e.what());
+    }
+  }
+  if (overrides.is_object())
+    for (auto it = overrides.begin(); it != overrides.end(); ++it) knobs[it.key()] = it.value();
+  try {
+    setup.params = setup.integrator->params(knobs);
+  } catch (const std::exception& e) {
+    throw std::runtime_error(overrides_where + ": " + e.what());
+  }
+  return setup;
+}
+
+nlohmann::json parse_knob_items(const std::vector<std::string>& items, const std::string& flag) {
+  nlohmann::json knobs = nlohmann::json::object();
+  for (const std::string& item : items) {
+    const auto eq = item.find('=');
+    if (eq == std::string::npos || eq == 0)
+      throw std::runtime_error(flag + ": expected NAME=VALUE, got '" + item + "'");
+    const std::string key = item.substr(0, eq), text = item.substr(eq + 1);
+    if (knobs.contains(key)) throw std::runtime_error(flag + ": '" + key + "' is given twice");
+    nlohmann::json value = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
+    knobs[key] = value.is_discarded() ? nlohmann::json(text) : value;
+  }
+  return knobs;
 }
 
 std::string integrator_names() {

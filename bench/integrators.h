@@ -5,9 +5,12 @@
 
 #include "tracer/render.h"
 
+#include <nlohmann/json.hpp>
+
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace bench {
 
@@ -23,5 +26,26 @@ const tracer::Integrator& integrator_named(std::string_view name, const std::str
 
 /// Every integrator's name, comma-separated, for --help and error messages.
 std::string integrator_names();
+
+/// The integrator of a render and its knobs, every default filled in.
+struct IntegratorSetup {
+  const tracer::Integrator* integrator = nullptr;  ///< The table's row.
+  nlohmann::json params;                           ///< Complete knobs (Integrator::params).
+};
+
+/// Chooses the integrator and completes its knobs. The integrator is `name` when not empty
+/// (`name_where` names the flag in errors), else the scene's "integrator", else whitted. The
+/// knobs are the scene's (when it chose the same integrator), then `overrides` on top
+/// (`overrides_where` names them in errors). Throws std::runtime_error, one line naming the
+/// scene's JSON pointer or the flag.
+IntegratorSetup resolve_integrator(const tracer::Scene& scene, const std::string& scene_label,
+                                   const std::string& name, const std::string& name_where,
+                                   const nlohmann::json& overrides,
+                                   const std::string& overrides_where);
+
+/// Parses NAME=VALUE items (e.g. --param k=100 filter=box max_radius=0.5) into a knob object:
+/// VALUE is read as JSON when it parses (numbers, true/false), else as a string. Throws
+/// std::runtime_error naming `flag` on an item without '=' or a repeated name.
+nlohmann::json parse_knob_items(const std::vector<std::string>& items, const std::string& flag);
 
 }  // namespace bench

@@ -12,5 +12,9 @@ tracer::Scene make_five(const GenOptions& options);
 tracer::Scene make_random(const GenOptions& options);
 tracer::Scene make_grid(const GenOptions& options);         // grid.h
 tracer::Scene make_sphereflake(const GenOptions& options);  // sphereflake.h
+tracer::Scene make_ring(const GenOptions& options);         // photon_scenes.cpp
+tracer::Scene make_glass_caustic(const GenOptions& options);
+tracer::Scene make_cornell(const GenOptions& options);
+tracer::Scene make_furnace(const GenOptions& options);
 
 }  // namespace scenes_gen

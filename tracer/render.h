@@ -17,6 +17,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <string>
 #include <string_view>
 
 namespace tracer {
@@ -35,6 +36,8 @@ struct RenderOptions {
   int width = 0;                 ///< Image width, pixels; 0 = the scene camera's.
   int height = 0;                ///< Image height, pixels; 0 = the scene camera's.
   PixelWindow window;            ///< Part of the image to render; default: all of it.
+  /// Memory budget of what an integrator builds per render (photon maps); default 25% of RAM.
+  accel::BuildLimits limits;
 };
 
 struct RenderResult {
@@ -53,16 +56,21 @@ struct Integrator {
   std::string_view name;         ///< Its name in --integrator, scene JSON and results rows.
   std::string_view description;  ///< One line for --help and the docs.
   /// Every knob with its default filled in, from the given ones (a JSON object, possibly empty).
-  /// Throws std::invalid_argument, one line naming the knob, on an unknown or bad knob.
+  /// Throws std::invalid_argument or accel::ConfigError, one line naming the knob, on an unknown
+  /// or bad knob.
   nlohmann::json (*params)(const nlohmann::json& given);
   /// Renders with knobs already completed by `params`. Called through tracer::render only.
   RenderResult (*render)(const Scene& scene, const accel::AnyAccel& accel,
                          const RenderOptions& options, const nlohmann::json& params);
+  /// Console lines (each ending in a newline) about a render's RenderResult::stats; nullptr when
+  /// the integrator keeps none.
+  std::string (*summary)(const nlohmann::json& stats) = nullptr;
 };
 
 /// Renders `scene` through `accel`, which must have been built over
 /// scene.geometry.primitive_bounds(), with `integrator` and its knobs `params` (a JSON object;
-/// missing knobs take their defaults). Throws std::invalid_argument on bad options or knobs; an
+/// missing knobs take their defaults). Throws std::invalid_argument on bad options, and
+/// std::invalid_argument or accel::ConfigError on bad knobs or a passed memory budget; an
 /// exception in a worker thread stops the render and is rethrown here.
 RenderResult render(const Scene& scene, const accel::AnyAccel& accel, const RenderOptions& options,
                     const Integrator& integrator,

@@ -5,6 +5,7 @@
 #include "geometry.h"
 
 #include <glm/vec3.hpp>
+#include <nlohmann/json.hpp>
 
 #include <cstdint>
 #include <string>
@@ -55,6 +56,13 @@ struct RenderSettings {
   float min_weight = 1e-3f;     ///< Rays whose path weight falls below this are not traced.
 };
 
+/// The integrator a scene asks for, and its knobs. The tracer only stores them: the integrator
+/// table (bench/integrators.h) knows the names, and each integrator checks its own knobs.
+struct IntegratorChoice {
+  std::string name;                                  ///< Integrator name; "" = the command's default.
+  nlohmann::json knobs = nlohmann::json::object();   ///< Its knobs as written in the scene.
+};
+
 struct Scene {
   Camera camera;
   Color background{0.0f};       ///< Radiance of rays that escape.
@@ -62,6 +70,7 @@ struct Scene {
   std::vector<Material> materials;
   Geometry geometry;
   RenderSettings render;
+  IntegratorChoice integrator;  ///< Scene JSON "integrator"; the command line overrides it.
 };
 
 }  // namespace tracer

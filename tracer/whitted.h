@@ -3,6 +3,11 @@
 // and dielectrics that split every ray into a reflected and a refracted one weighted by the
 // Fresnel R and T, with Beer-Lambert absorption inside. Templated on the intersector, so each
 // acceleration structure gets its own compiled copy of the whole recursion.
+//
+// What happens at a diffuse surface, and what an escaping ray sees, is the Shading policy:
+// DirectLighting (Whitted's own: direct light through shadow rays, the background) or another
+// integrator's (photon mapping adds caustics and indirect light), which then reuses the
+// specular recursion unchanged.
 
 #include "offset_ray.h"
 #include "optics.h"
@@ -12,6 +17,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace tracer {
 
@@ -40,7 +46,36 @@ struct DirectResponse {
 Color diffuse_phong_brdf(const DirectResponse& r, const Vec3& n, const Vec3& to_light_unit,
                          const Vec3& to_eye_unit);
 
-template <class Isect>
+/// A diffuse surface met by a path, as the Shading policy sees it (Scalar: the tracer's).
+template <class Scalar>
+struct DiffuseHitT {
+  const SurfacePointT<Scalar>& sp;  ///< The point, with its error bound (rays leave through it).
+  Vec3T<Scalar> n{0};               ///< Unit shading normal, turned to the side the ray arrived from.
+  Vec3T<Scalar> n_geo{0};           ///< Unit geometric normal, on that side too.
+  Vec3T<Scalar> to_eye{0};          ///< Unit direction back along the arriving ray.
+  DirectResponse response;          ///< Lambertian albedo and Phong highlight.
+};
+using DiffuseHit = DiffuseHitT<float>;
+
+/// Where a ray of the recursion is, for the Shading policy.
+struct PathState {
+  int depth = 1;                ///< Recursion depth of the ray (camera ray = 1).
+  Color throughput{1.0f};       ///< Path weight at this surface (attenuation included).
+  Color absorption{0.0f};       ///< Beer coefficient of the medium the ray arrived through.
+  int gathers = 0;              ///< Diffuse bounces sampled on the path so far (0: camera path).
+};
+
+/// Whitted's own shading: direct light through shadow rays at diffuse surfaces; a ray that
+/// escapes sees the background.
+struct DirectLighting {
+  template <class Tracer, class Hit>
+  Color diffuse(const Tracer& tracer, const Hit& h, const PathState&, RayCounts& counts) const {
+    return tracer.direct(h.sp, h.n, h.n_geo, h.to_eye, h.response, counts);
+  }
+  Color escaped(const Scene& scene, const PathState&) const { return scene.background; }
+};
+
+template <class Isect, class Shading = DirectLighting>
 class Whitted {
  public:
   using Scalar = typename Isect::Scalar;  ///< float, or double for the naive reference.
@@ -49,10 +84,11 @@ class Whitted {
   using Point = SurfacePointT<Scalar>;
 
   /// An integrator over `scene` (which must outlive it) querying geometry through `isect`, with
-  /// the scene's recursion limits or `limits` in their place.
+  /// the scene's recursion limits or `limits` in their place, shading diffuse surfaces by
+  /// `shading`.
   Whitted(const Scene& scene, const Isect& isect) : Whitted(scene, isect, scene.render) {}
-  Whitted(const Scene& scene, const Isect& isect, const RenderSettings& limits)
-      : scene_(&scene), isect_(isect), limits_(limits) {}
+  Whitted(const Scene& scene, const Isect& isect, const RenderSettings& limits, Shading shading = {})
+      : scene_(&scene), isect_(isect), limits_(limits), shading_(std::move(shading)) {}
 
   /// Radiance arriving along a camera ray (unit direction); counts every ray traced.
   Color trace_eye(const R& ray, RayCounts& counts) const {
@@ -60,14 +96,16 @@ class Whitted {
     return trace(ray, 1, Color(1.0f), Color(0.0f), counts);
   }
 
- private:
   /// Radiance along `ray` at recursion depth `depth` (camera ray = 1). `throughput` is the
   /// path's weight before this ray and `absorption` the Beer coefficient of the medium it
-  /// travels in. Geometry is computed in Scalar, colours in float.
+  /// travels in; `gathers` counts the diffuse bounces sampled before it (PathState). Geometry is
+  /// computed in Scalar, colours in float.
   Color trace(const R& ray, int depth, const Color& throughput, const Color& absorption,
-              RayCounts& counts) const {
+              RayCounts& counts, int gathers = 0) const {
     const auto hit = isect_.closest(ray);
-    if (!hit.found()) return beer_transmittance(absorption, accel::kInfinity) * scene_->background;
+    if (!hit.found())
+      return beer_transmittance(absorption, accel::kInfinity) *
+             shading_.escaped(*scene_, PathState{depth, throughput, absorption, gathers});
     if (depth == 1) counts.eye_hits++;
 
     const Color attenuation = beer_transmittance(absorption, float(hit.t));
@@ -79,28 +117,36 @@ class Whitted {
     const V n_geo = front ? sp.n_geo : -sp.n_geo;
     V n = front ? sp.n_shade : -sp.n_shade;
     if (glm::dot(n, n_geo) < Scalar(0)) n = n_geo;  // interpolated normal turned past the surface
+    const PathState path{depth, weight, absorption, gathers};
 
     Color radiance(0.0f);
     switch (m.type) {
       case MaterialType::Diffuse:
-        radiance = direct(sp, n, n_geo, -ray.dir, {m.albedo, m.specular, m.shininess}, counts);
+        radiance = shading_.diffuse(
+            *this,
+            DiffuseHitT<Scalar>{sp, n, n_geo, -ray.dir, {m.albedo, m.specular, m.shininess}},
+            path, counts);
         break;
       case MaterialType::Mirror:
         radiance = spawn(sp, n_geo, reflect(ray.dir, n), depth, weight * m.reflectance,
-                         absorption, counts.reflection, counts) *
+                         absorption, counts.reflection, counts, gathers) *
                    m.reflectance;
         break;
       case MaterialType::Dielectric:
         radiance =
-            dielectric(ray.dir, sp, n, n_geo, front, m, m.ior, depth, weight, absorption, counts);
+            dielectric(ray.dir, sp, n, n_geo, front, m, m.ior, depth, weight, absorption, counts,
+                       gathers);
         break;
       case MaterialType::Nff: {
         // The classic NFF surface: kd-scaled diffuse + ks-weighted highlight from the lights,
         // a mirror ray weighted ks, and a refracted ray weighted by the transmittance.
-        radiance = direct(sp, n, n_geo, -ray.dir, {m.kd * m.albedo, m.ks, m.shininess}, counts);
+        radiance = shading_.diffuse(
+            *this,
+            DiffuseHitT<Scalar>{sp, n, n_geo, -ray.dir, {m.kd * m.albedo, m.ks, m.shininess}},
+            path, counts);
         if (m.ks > 0.0f)
           radiance += m.ks * spawn(sp, n_geo, reflect(ray.dir, n), depth, weight * m.ks,
-                                   absorption, counts.reflection, counts);
+                                   absorption, counts.reflection, counts, gathers);
         if (m.transmittance > 0.0f) {
           const Scalar ior = m.ior > 0.0f ? m.ior : 1.0f;
           const auto s = orient(ray.dir, front ? n : -n, ior);
@@ -108,7 +154,7 @@ class Whitted {
           if (refract(ray.dir, s.normal, s.eta_i / s.eta_t, t))
             radiance += m.transmittance * spawn(sp, -n_geo, glm::normalize(t), depth,
                                                 weight * m.transmittance, absorption,
-                                                counts.refraction, counts);
+                                                counts.refraction, counts, gathers);
         }
         break;
       }
@@ -119,20 +165,21 @@ class Whitted {
   /// Traces a secondary ray of direction `dir` from the surface point sp, leaving on the side of
   /// `side` (a unit geometric normal), when the depth and weight limits allow; counts it.
   Color spawn(const Point& sp, const V& side, const V& dir, int depth, const Color& weight,
-              const Color& absorption, std::uint64_t& kind_count, RayCounts& counts) const {
+              const Color& absorption, std::uint64_t& kind_count, RayCounts& counts,
+              int gathers = 0) const {
     const RenderSettings& rs = limits_;
     if (depth + 1 > rs.max_depth || !(path_weight(weight) >= rs.min_weight)) return Color(0.0f);
     R r;
     r.org = offset_ray_origin(sp, side);
     r.dir = dir;
     kind_count++;
-    return trace(r, depth + 1, weight, absorption, counts);
+    return trace(r, depth + 1, weight, absorption, counts, gathers);
   }
 
   /// Both Fresnel branches of a smooth dielectric. `n`, `n_geo` face the arriving ray.
   Color dielectric(const V& d, const Point& sp, const V& n, const V& n_geo, bool front,
                    const Material& m, Scalar ior, int depth, const Color& weight,
-                   const Color& absorption, RayCounts& counts) const {
+                   const Color& absorption, RayCounts& counts, int gathers) const {
     // The sign of d.n_outward says whether the ray enters or leaves; leaving uses
     // eta = ior / 1. The medium beyond the surface is air unless the ray enters.
     const auto s = orient(d, front ? n : -n, ior);
@@ -146,11 +193,11 @@ class Whitted {
     Color radiance(0.0f);
     if (reflectance > 0.0f)
       radiance += reflectance * spawn(sp, n_geo, reflect(d, n), depth, weight * reflectance, here,
-                                      counts.reflection, counts);
+                                      counts.reflection, counts, gathers);
     if (transmits && reflectance < 1.0f) {
       const float tr = 1.0f - reflectance;
       radiance += tr * spawn(sp, -n_geo, glm::normalize(t), depth, weight * tr, beyond,
-                             counts.refraction, counts);
+                             counts.refraction, counts, gathers);
     }
     return radiance;
   }
@@ -175,9 +222,14 @@ class Whitted {
     return radiance;
   }
 
+  const Scene& scene() const { return *scene_; }
+  const Isect& intersector() const { return isect_; }
+
+ private:
   const Scene* scene_;
   Isect isect_;
   RenderSettings limits_;
+  Shading shading_;
 };
 
 }  // namespace tracer

@@ -1,0 +1,67 @@
+#pragma once
+// The knobs of the photon-mapping integrator: one struct, each default written once, here. They
+// are read from the scene's "integrator" object and from `render --param NAME=VALUE`, swept by
+// sweep files ("integrator_knobs"), and written back complete into every results row.
+
+#include "density.h"
+#include "knn.h"
+#include "photon_tree_params.h"
+
+#include <nlohmann/json.hpp>
+
+#include <cstdint>
+#include <optional>
+
+namespace photon {
+
+struct PhotonParams {
+  /// Photons stored in the global map (light after at least one diffuse bounce), photons, >= 1.
+  int global_photons = 100000;
+  /// Photons stored in the caustic map (light after specular bounces only), photons, >= 1.
+  int caustic_photons = 50000;
+  /// Photons gathered per radiance estimate: the k of the kNN gather, in [1, 2^20].
+  int k = 50;
+  /// Largest gather radius, world units, > 0; unset ("auto") = 1/20 of the diagonal of the box
+  /// around the scene's bounded primitives (unbounded when there are none).
+  std::optional<float> max_radius;
+  /// Density-estimation kernel: box, cone (the paper's) or biweight.
+  DensityFilter filter = DensityFilter::Cone;
+  /// Cone filter constant k >= 1: weight 1 - d / (cone_k r).
+  float cone_k = 1.1f;
+  /// Surface interactions per photon path before it is dropped, in [1, 1000].
+  int max_photon_depth = 64;
+  /// Final-gather rays per diffuse camera-path hit, in [0, 65536]; 0 = read the global map
+  /// directly there instead.
+  int final_gather_rays = 0;
+  /// Photon kd-tree variant: balanced (the paper's), sliding_midpoint or brute_force.
+  PhotonTreeKind photon_tree = PhotonTreeKind::Balanced;
+  /// Photons per leaf of the bucket trees (sliding_midpoint), in [1, 256].
+  int leaf_size = 8;
+  /// The paper's optimisation 2: reject photons from behind the surface before the heap.
+  bool cull = true;
+  /// The paper's optimisation 3: compute each photon's squared distance once (never changes the
+  /// image).
+  bool cache_distances = true;
+  /// Seed of every random number of the photon paths and the final gather.
+  std::uint64_t seed = 1;
+  /// Trace only the maps the scene can use (no specular surface: no caustic map; no diffuse
+  /// surface that reflects: no global map). false traces both, to measure what skipping saves.
+  bool skip_unneeded_maps = true;
+
+  /// The gather knobs of a map lookup, with the radius resolved to `radius` (world units).
+  GatherParams gather(float radius) const;
+  /// The density-estimation knobs.
+  DensityParams density() const;
+  /// The photon-tree knobs.
+  PhotonTreeParams tree() const;
+};
+
+/// Every knob, max_radius as "auto" or its number.
+void to_json(nlohmann::json& j, const PhotonParams& p);
+
+/// Reads the knobs given (an object, possibly empty; others keep their defaults). Throws
+/// accel::ConfigError, one line naming the knob ("photon: parameter 'k' must be in [1, 1048576],
+/// got 0"), for an unknown knob, a wrong type or a value out of range.
+void from_json(const nlohmann::json& j, PhotonParams& p);
+
+}  // namespace photon

@@ -1,0 +1,144 @@
+// Scenes for photon mapping. Each picks the photon integrator in its "integrator" object (the
+// command line may still choose another) with photon counts that show its effect at the default
+// image size in seconds.
+
+#include "photon_scenes.h"
+
+#include "materials.h"
+#include "registry.h"
+
+#include <cmath>
+#include <numbers>
+
+namespace scenes_gen {
+
+namespace {
+
+using tracer::Vec3;
+
+/// A quad as two triangles, corners counter-clockwise seen from the side its normal faces.
+void add_quad(tracer::Geometry& g, Vec3 a, Vec3 b, Vec3 c, Vec3 d, std::uint32_t material) {
+  g.triangles.push_back({a, b, c, material, -1});
+  g.triangles.push_back({a, c, d, material, -1});
+}
+
+void choose_photon(tracer::Scene& scene, nlohmann::json knobs) {
+  scene.integrator.name = "photon";
+  scene.integrator.knobs = std::move(knobs);
+}
+
+}  // namespace
+
+// The paper's Figure 4: a mirror ring (a cylinder shell without caps, reflective on both sides)
+// on a diffuse floor, lit from the side by one point light over its rim. Light reflected off the
+// inside of the far wall converges into the cardioid (nephroid) caustic on the floor inside.
+tracer::Scene make_ring(const GenOptions&) {
+  tracer::Scene scene;
+  scene.materials = {mirror("ring", {0.95f, 0.9f, 0.75f}), diffuse("floor", {0.75f, 0.75f, 0.72f})};
+  scene.geometry.cones.push_back(
+      tracer::make_cone({0.0f, 0.0f, 0.0f}, 1.0f, {0.0f, 0.6f, 0.0f}, 1.0f, 0));
+  scene.geometry.planes.push_back({Vec3(0.0f, 1.0f, 0.0f), 0.0f, 1});
+  scene.lights = {point_light({-6.0f, 2.2f, 0.0f}, 1500.0f)};
+  scene.background = {0.0f, 0.0f, 0.0f};
+  scene.camera.position = {0.4f, 3.4f, 2.6f};
+  scene.camera.look_at = {0.05f, 0.0f, 0.0f};
+  scene.camera.vfov_deg = 45.0f;
+  scene.camera.width = 480;
+  scene.camera.height = 360;
+  scene.render.max_depth = 8;
+  // The floor is unbounded and nothing stands over it but the ring: few photons bounce back
+  // down after a diffuse bounce, so the global map is small (its pass stops at its cap).
+  choose_photon(scene, {{"caustic_photons", 200000},
+                        {"global_photons", 2000},
+                        {"k", 80},
+                        {"max_radius", 0.08},
+                        {"filter", "cone"}});
+  return scene;
+}
+
+// The paper's Figure 5: a glass sphere focusing a point light into a bright caustic on the
+// diffuse floor beside its shadow.
+tracer::Scene make_glass_caustic(const GenOptions&) {
+  tracer::Scene scene;
+  scene.materials = {glass("glass", 1.5f), diffuse("floor", {0.7f, 0.7f, 0.68f}),
+                     diffuse("wall", {0.6f, 0.62f, 0.7f})};
+  // A ball lens of radius 1 and index 1.5 focuses at n R / (2 (n - 1)) = 1.5 from its centre for
+  // parallel light; for the light 6.5 away the image lies about 1.95 from the centre, which the
+  // sphere's height puts on the floor.
+  scene.geometry.spheres.push_back({{0.0f, 1.8f, 0.0f}, 1.0f, 0});
+  scene.geometry.planes.push_back({Vec3(0.0f, 1.0f, 0.0f), 0.0f, 1});
+  scene.geometry.planes.push_back({Vec3(0.0f, 0.0f, 1.0f), -4.0f, 2});  // z = -4
+  scene.lights = {point_light({-2.0f, 8.0f, 0.6f}, 1800.0f)};
+  scene.background = {0.0f, 0.0f, 0.0f};
+  scene.camera.position = {0.0f, 3.4f, 6.5f};
+  scene.camera.look_at = {0.4f, 0.9f, 0.0f};
+  scene.camera.vfov_deg = 42.0f;
+  scene.camera.width = 480;
+  scene.camera.height = 360;
+  scene.render.max_depth = 10;
+  choose_photon(scene, {{"caustic_photons", 200000},
+                        {"global_photons", 100000},
+                        {"k", 150},
+                        {"max_radius", 0.6},
+                        {"filter", "cone"}});
+  return scene;
+}
+
+// A Cornell box (red left wall, green right wall, white floor, ceiling and back) lit by one point
+// light under the ceiling, with a mirror sphere and a glass sphere: colour bleeding in the global
+// map, caustics under the glass sphere in the caustic map.
+tracer::Scene make_cornell(const GenOptions&) {
+  tracer::Scene scene;
+  scene.materials = {diffuse("white", {0.73f, 0.73f, 0.73f}), diffuse("red", {0.63f, 0.07f, 0.05f}),
+                     diffuse("green", {0.12f, 0.45f, 0.09f}), mirror("mirror", {0.9f, 0.9f, 0.9f}),
+                     glass("glass", 1.5f)};
+  enum : std::uint32_t { kWhite, kRed, kGreen, kMirror, kGlass };
+  tracer::Geometry& g = scene.geometry;
+  const float s = 1.0f;  // half width; the box is [-1, 1] x [0, 2] x [-1, 1], open at z = +1
+  add_quad(g, {-s, 0, -s}, {-s, 0, s}, {s, 0, s}, {s, 0, -s}, kWhite);                // floor
+  add_quad(g, {-s, 2 * s, -s}, {s, 2 * s, -s}, {s, 2 * s, s}, {-s, 2 * s, s}, kWhite); // ceiling
+  add_quad(g, {-s, 0, -s}, {s, 0, -s}, {s, 2 * s, -s}, {-s, 2 * s, -s}, kWhite);      // back
+  add_quad(g, {-s, 0, -s}, {-s, 2 * s, -s}, {-s, 2 * s, s}, {-s, 0, s}, kRed);        // left
+  add_quad(g, {s, 0, -s}, {s, 0, s}, {s, 2 * s, s}, {s, 2 * s, -s}, kGreen);          // right
+  g.spheres.push_back({{-0.45f, 0.35f, -0.35f}, 0.35f, kMirror});
+  g.spheres.push_back({{0.45f, 0.35f, 0.25f}, 0.35f, kGlass});
+  scene.lights = {point_light({0.0f, 1.8f, 0.0f}, 50.0f)};
+  scene.background = {0.0f, 0.0f, 0.0f};
+  scene.camera.position = {0.0f, 1.0f, 3.9f};
+  scene.camera.look_at = {0.0f, 1.0f, 0.0f};
+  scene.camera.vfov_deg = 38.0f;
+  scene.camera.width = 400;
+  scene.camera.height = 400;
+  scene.render.max_depth = 10;
+  // The global map is read directly (final gathering is a knob away, and slower: its rays that
+  // meet the ceiling near the light bring back fireflies at few rays).
+  choose_photon(scene, {{"caustic_photons", 100000},
+                        {"global_photons", 200000},
+                        {"k", 200},
+                        {"max_radius", 0.3}});
+  return scene;
+}
+
+tracer::Scene make_furnace_scene(float radius, float albedo, float power_w) {
+  tracer::Scene scene;
+  scene.materials = {diffuse("wall", {albedo, albedo, albedo})};
+  // Only the inside is visible (NFF's negative radius): the light and the camera are inside.
+  scene.geometry.spheres.push_back({{0.0f, 0.0f, 0.0f}, -radius, 0});
+  scene.lights = {point_light({0.0f, 0.0f, 0.0f}, power_w)};
+  scene.background = {0.0f, 0.0f, 0.0f};
+  scene.camera.position = {0.0f, 0.0f, 0.0f};
+  scene.camera.look_at = {0.0f, 0.0f, -1.0f};
+  scene.camera.vfov_deg = 90.0f;
+  scene.camera.width = 64;
+  scene.camera.height = 64;
+  scene.render.max_depth = 4;
+  choose_photon(scene, {{"global_photons", 100000}, {"k", 100}, {"max_photon_depth", 1000}});
+  scene.geometry.finalize();
+  return scene;
+}
+
+tracer::Scene make_furnace(const GenOptions&) {
+  return make_furnace_scene(1.0f, 0.5f, 100.0f);
+}
+
+}  // namespace scenes_gen
