@@ -150,6 +150,7 @@ int run_render(const RenderFlags& f) {
   check_image_memory(width, height, limits.max_memory_bytes,
                      options.width ? std::string("--resolution") : f.scene + ": /camera/resolution");
 
+  if (integrator.check) integrator.check(scene, options, setup.params);
   // Built before anything is printed, so that a bad knob is the only line of output.
   const auto boxes = scene.geometry.primitive_bounds();
   const auto build_start = std::chrono::steady_clock::now();

@@ -35,6 +35,7 @@ struct SweepFlags {
   int repetitions = -1, warmup = -1, threads = -1;
   std::string resolution, out, jsonl, shard_text = "0/1", max_memory;
   std::string validate_resolution, integrator;
+  std::vector<std::string> integrator_knobs;  ///< --param NAME=V1,V2,...
   bool resume = false, quiet = false, spd = false, list = false;
 };
 
@@ -128,6 +129,25 @@ SweepDefinition definition_from_flags(const SweepFlags& f) {
     throw SweepError("--spd: is --integrator spd, but --integrator " + f.integrator + " was given");
   if (f.spd) d.integrator = "spd";
   if (!f.integrator.empty()) d.integrator = integrator_named(f.integrator, "--integrator").name;
+  for (const std::string& item : f.integrator_knobs) {
+    // NAME=V1,V2,...: each value read as JSON when it parses, else as a string.
+    const auto eq = item.find('=');
+    if (eq == std::string::npos || eq == 0) throw SweepError("--param: expected NAME=V1,V2,..., got '" + item + "'");
+    std::vector<nlohmann::json> values;
+    std::string rest = item.substr(eq + 1);
+    for (std::size_t start = 0;;) {
+      const std::size_t comma = rest.find(',', start);
+      const std::string text = rest.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+      nlohmann::json v = nlohmann::json::parse(text, nullptr, false);
+      values.push_back(v.is_discarded() ? nlohmann::json(text) : v);
+      if (comma == std::string::npos) break;
+      start = comma + 1;
+    }
+    // Like a structure knob flag, it replaces the knob's values in every group (one group when
+    // the file has none).
+    if (d.integrator_knobs.empty()) d.integrator_knobs.emplace_back();
+    for (KnobValues& group : d.integrator_knobs) group[item.substr(0, eq)] = values;
+  }
   if (!f.validate_resolution.empty())
     std::tie(d.validate_width, d.validate_height) =
         parse_resolution(f.validate_resolution, "--validate-resolution");
@@ -210,6 +230,10 @@ void add_sweep_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--integrator", flags->integrator,
                   "Integrator of every configuration (sweep key \"integrator\"); one of " + integrator_names());
   cmd->add_flag("--spd", flags->spd, "Shorthand for --integrator spd (the SPD test rules)");
+  cmd->add_option("--param", flags->integrator_knobs,
+                  "Integrator knob values to cross, NAME=V1,V2,... (sweep key \"integrator_knobs\"; "
+                  "replaces the knob's values in every group), e.g. --param cone_k=1,1.5,2")
+      ->allow_extra_args(false);
   cmd->add_option("--validate-resolution", flags->validate_resolution,
                   "Render naive and check every structure against it at WIDTHxHEIGHT only; no speedups then");
   cmd->add_option("--max-memory", flags->max_memory, "Build memory budget, e.g. 512M or 2G (0 = 25% of RAM)");

@@ -246,7 +246,7 @@ SweepDefinition parse_sweep_definition(const json& j) {
   if (!j.is_object()) fail("", "a sweep definition must be a JSON object");
   require_keys(j, "", {"name", "description", "scenes", "structures", "knobs", "resolution", "threads",
                        "repetitions", "warmup", "max_memory_bytes", "integrator", "mode", "validate_resolution",
-                       "integrator_knobs", "fronts", "noise_threshold", "remeasure"});
+                       "integrator_knobs", "fronts", "noise_threshold", "remeasure", "images"});
   SweepDefinition d;
   if (j.contains("name")) {
     d.name = get_string(j["name"], "/name");
@@ -291,6 +291,10 @@ SweepDefinition parse_sweep_definition(const json& j) {
   }
   if (j.contains("integrator_knobs"))
     d.integrator_knobs = parse_integrator_knobs(j["integrator_knobs"], "/integrator_knobs", d.integrator);
+  if (j.contains("images")) {
+    if (!j["images"].is_boolean()) fail("/images", "must be true or false, got " + brief(j["images"]));
+    d.save_images = j["images"].get<bool>();
+  }
   if (j.contains("fronts")) {
     if (!j["fronts"].is_object()) fail("/fronts", "must be an object, got " + brief(j["fronts"]));
     d.fronts = j["fronts"];
@@ -440,6 +444,7 @@ json to_json(const SweepDefinition& d) {
   if (!d.fronts.is_null()) j["fronts"] = d.fronts;
   if (d.noise_threshold != SweepDefinition{}.noise_threshold) j["noise_threshold"] = d.noise_threshold;
   if (d.remeasure != SweepDefinition{}.remeasure) j["remeasure"] = d.remeasure;
+  if (d.save_images) j["images"] = true;
   return j;
 }
 

@@ -64,6 +64,7 @@ struct SweepDefinition {
   /// and the groups are joined (one group per knob varies one knob at a time). Empty: the
   /// integrator's defaults only. JSON key "integrator_knobs": one object or an array of them.
   std::vector<KnobValues> integrator_knobs;
+  bool save_images = false;             ///< Write each row's image as PNG (key "images").
   /// What `accelbench fronts` adds to a sweep (reference, metric, seeds); null for a plain sweep.
   /// Kept here so that --resume refuses a file written with other front settings.
   nlohmann::json fronts;

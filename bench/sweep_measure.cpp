@@ -36,8 +36,15 @@ tracer::RenderResult render_with(const tracer::Scene& scene, const accel::AnyAcc
   o.count_traversal = counting;
   o.width = width;
   o.height = height;
-  return tracer::render(scene, built, o, integrator_named(options.integrator, "integrator"),
-                        options.integrator_params);
+  o.limits = options.limits;
+  // A scene that chose this integrator brings its knobs; the sweep's go on top of them.
+  nlohmann::json knobs = options.integrator_params;
+  if (scene.integrator.name == options.integrator && scene.integrator.knobs.is_object() &&
+      !scene.integrator.knobs.empty()) {
+    knobs = scene.integrator.knobs;
+    for (const auto& [k, v] : options.integrator_params.items()) knobs[k] = v;
+  }
+  return tracer::render(scene, built, o, integrator_named(options.integrator, "integrator"), knobs);
 }
 
 /// The reason a check against naive fails, or "" when hash and ray counts agree.
@@ -120,6 +127,7 @@ Prepared prepare(const tracer::Scene& scene, std::span<const accel::Aabb> boxes,
     m.image_hash = r.image.content_hash();
     m.traversal = r.traversal;
     m.rays = r.rays;
+    if (!r.stats.empty()) m.integrator_stats["counting"] = r.stats;
     if (options.inspect) p.image = std::move(r.image);
     if (reference && options.validate_width <= 0) {
       if (std::string why = mismatch(m.image_hash, m.rays, *reference, ""); !why.empty()) {
@@ -155,6 +163,7 @@ std::optional<Sample> time_render(const tracer::Scene& scene, Prepared& p, const
     const double wall = seconds_since(t0);
     const double cpu = cpu_seconds(cpu_clock) - cpu0;
     m.spent_trace_s += wall;
+    if (!r.stats.empty()) m.integrator_stats["timed"] = r.stats;
     const std::uint64_t h = r.image.content_hash();
     if (h != m.image_hash) {
       m.status = RowStatus::Error;

@@ -99,6 +99,9 @@ struct Measurement {
   double spent_trace_s = 0.0;            ///< Wall time inside every render call, s (overhead accounting).
   /// What the inspector found (MeasureOptions::inspect), merged into the row; an object.
   nlohmann::json extra = nlohmann::json::object();
+  /// The integrator's statistics (RenderResult::stats) of the counting pass and the last timed
+  /// render, {"counting": ..., "timed": ...}; null when it keeps none.
+  nlohmann::json integrator_stats;
 
   /// Rays per second at the median render time, shadow rays included (0 when not timed).
   double rays_per_s() const;

@@ -46,6 +46,8 @@ nlohmann::json make_row(const SweepConfig& config, const SceneSpec& scene, std::
     row["traversal"] = m.traversal;
     row["rays"] = m.rays;
   }
+  if (!m.integrator_stats.is_null() && !m.integrator_stats.empty())
+    row["integrator_stats"] = m.integrator_stats;
   // With a validation resolution, naive was rendered and timed only there: its figures belong to
   // the validation record, and no speedup is claimed against a time taken at another resolution.
   const bool apart = options.validate_width > 0;

@@ -12,6 +12,7 @@
 #include "accel/accel.h"
 
 #include <chrono>
+#include <filesystem>
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
@@ -212,6 +213,24 @@ RunSummary run_sweep(const SweepDefinition& definition, const RunOptions& option
   mo.validate_width = definition.validate_width;
   mo.validate_height = definition.validate_height;
   mo.inspect = options.inspect;
+  if (definition.save_images) {
+    // "images": each ok row's image as a PNG named by its hash, beside the JSON Lines file.
+    std::filesystem::path dir = options.images_dir;
+    if (dir.empty()) {
+      const std::filesystem::path jsonl(options.jsonl_path);
+      dir = jsonl.parent_path() / (jsonl.stem().string() + "-images");
+    }
+    mo.inspect = [dir, inner = options.inspect](const tracer::Scene& scene,
+                                                const accel::AnyAccel& built,
+                                                const MeasureOptions& o, const tracer::Image& image,
+                                                Measurement& m) {
+      if (inner) inner(scene, built, o, image, m);
+      std::filesystem::create_directories(dir);
+      const std::string path = (dir / (tracer::hash_hex(image.content_hash()) + ".png")).string();
+      image.write_png(path, 0.0f);
+      m.extra["image"] = path;
+    };
+  }
   // Naive, the reference, is rendered at the validation resolution when one is set.
   MeasureOptions naive_mo = mo;
   if (definition.validates_apart()) {

@@ -19,6 +19,9 @@ struct RunOptions {
   int shard_count = 1;       ///< Number of shards.
   bool progress = true;      ///< Progress lines on stderr.
   Inspector inspect;         ///< Optional: sees every ok configuration's image (fronts).
+  /// Folder for the rows' images when the sweep saves them ("images": true); "" = beside the
+  /// JSON Lines file, named after it with "-images".
+  std::string images_dir;
 };
 
 /// What a run did.

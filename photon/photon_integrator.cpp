@@ -198,6 +198,14 @@ std::string photon_summary(const nlohmann::json& stats) {
   return out + line;
 }
 
+void photon_check(const tracer::Scene& scene, const tracer::RenderOptions& options,
+                  const nlohmann::json& knobs) {
+  const PhotonParams params = knobs.get<PhotonParams>();
+  MapNeeds needs = map_needs(scene);
+  if (!params.skip_unneeded_maps) needs.global = needs.caustic = true;
+  check_budget(params, needs, options.limits);
+}
+
 nlohmann::json photon_params_json(const nlohmann::json& given) {
   PhotonParams p;
   from_json(given, p);
@@ -319,7 +327,7 @@ const tracer::Integrator& photon_integrator() {
       "photon",
       "photon mapping (the paper's §4): Whitted camera paths, caustics from a caustic map, "
       "indirect light from a global map (read directly, or by final gathering)",
-      photon_params_json, render_photon, photon_summary};
+      photon_params_json, render_photon, photon_summary, photon_check};
   return kPhoton;
 }
 

@@ -40,9 +40,9 @@ tracer::Scene make_ring(const GenOptions&) {
   scene.geometry.planes.push_back({Vec3(0.0f, 1.0f, 0.0f), 0.0f, 1});
   scene.lights = {point_light({-6.0f, 2.2f, 0.0f}, 1500.0f)};
   scene.background = {0.0f, 0.0f, 0.0f};
-  scene.camera.position = {0.4f, 3.4f, 2.6f};
-  scene.camera.look_at = {0.05f, 0.0f, 0.0f};
-  scene.camera.vfov_deg = 45.0f;
+  scene.camera.position = {0.5f, 3.3f, 1.9f};
+  scene.camera.look_at = {0.1f, 0.0f, -0.05f};
+  scene.camera.vfov_deg = 40.0f;
   scene.camera.width = 480;
   scene.camera.height = 360;
   scene.render.max_depth = 8;

@@ -130,4 +130,56 @@ TEST_F(Cli, RandomGeneratorTakesAnyCountIncludingZero) {
   EXPECT_NE(some.output.find("123 spheres"), std::string::npos) << some.output;
 }
 
+// The photon integrator from the command line: the scene's knobs, --param on top, one-line errors
+// naming the knob for bad values, and --stats recording the maps.
+TEST_F(Cli, PhotonKnobsFromSceneAndFlagsAndBadOnesNameTheKnob) {
+  const std::string scene = path("furnace.json");
+  ASSERT_EQ(accelbench("gen furnace -o " + scene).status, 0);
+  const CliRun ok = accelbench("render " + scene +
+                               " --resolution 8x8 --param global_photons=3000 --param filter=box "
+                               "--stats " + path("f.json"));
+  ASSERT_EQ(ok.status, 0) << ok.output;
+  EXPECT_NE(ok.output.find("integrator photon"), std::string::npos) << ok.output;
+  EXPECT_NE(ok.output.find("caustic map skipped: no specular surface"), std::string::npos) << ok.output;
+  std::ifstream in(path("f.json"));
+  const nlohmann::json stats = nlohmann::json::parse(in);
+  EXPECT_EQ(stats["integrator"], "photon");
+  EXPECT_EQ(stats["integrator_params"]["global_photons"], 3000);  // --param
+  EXPECT_EQ(stats["integrator_params"]["k"], 100);                // the scene's
+  EXPECT_EQ(stats["integrator_params"]["filter"], "box");
+  EXPECT_EQ(stats["integrator_stats"]["timed"]["maps"]["global"]["stored"], 3000);
+  EXPECT_GT(stats["integrator_stats"]["counting"]["gather"]["photons_visited_per_lookup"].get<double>(), 0.0);
+  EXPECT_GT(stats["rays"]["photon"].get<double>(), 0.0);
+
+  const struct {
+    std::string args;
+    std::string message;
+  } cases[] = {
+      {"--param global_photons=0", "accelbench: --param: photon: parameter 'global_photons' must be in [1, "},
+      {"--param caustic_photons=-3", "accelbench: --param: photon: parameter 'caustic_photons' must be in [1, "},
+      {"--param k=0", "accelbench: --param: photon: parameter 'k' must be in [1, "},
+      {"--param cone_k=0.5", "accelbench: --param: photon: parameter 'cone_k' must be in [1.0, "},
+      {"--param max_radius=0", "accelbench: --param: photon: parameter 'max_radius' must be a number > 0"},
+      {"--param max_radius=-2", "accelbench: --param: photon: parameter 'max_radius' must be a number > 0"},
+      {"--param global_photons=100000000 --max-memory 1M",
+       "accelbench: photon: parameter 'global_photons' = 100000000 needs "},
+      {"--param kk=1", "accelbench: --param: photon: unknown parameter 'kk'"},
+      {"--param k", "accelbench: --param: expected NAME=VALUE, got 'k'"},
+      {"--integrator whitted --param k=3", "accelbench: --param: whitted: unknown knob 'k'"},
+  };
+  for (const auto& c : cases) {
+    const CliRun r = accelbench("render " + scene + " --resolution 8x8 " + c.args);
+    EXPECT_NE(r.status, 0) << c.args;
+    EXPECT_EQ(r.output.rfind(c.message, 0), 0u) << c.args << "\n got: " << r.output;
+    EXPECT_EQ(r.output.find('\n'), r.output.size() - 1) << "not one line: " << r.output;
+  }
+  // A bad knob in the scene names the scene and its JSON pointer.
+  std::ofstream(path("bad.json")) << R"({"integrator": {"name": "photon", "k": 0},
+      "materials": [{"name": "m", "type": "diffuse"}], "spheres": [{"center": [0, 0, -3], "radius": 1, "material": "m"}]})";
+  const CliRun bad = accelbench("render " + path("bad.json") + " --resolution 8x8");
+  EXPECT_NE(bad.status, 0);
+  EXPECT_EQ(bad.output.rfind("accelbench: " + path("bad.json") + ": /integrator: photon: parameter 'k'", 0), 0u)
+      << bad.output;
+}
+
 }  // namespace

@@ -98,7 +98,7 @@ TEST(SceneJson, EveryBadValueNamesItsPath) {
       {"/foo", 1,
        "/foo: unknown key in scene (expected one of camera, background, lights, materials, "
        "spheres, "
-       "planes, boxes, triangles, meshes, cones, polygons, render)"},
+       "planes, boxes, triangles, meshes, cones, polygons, render, integrator)"},
       {"/materials/2/ior", 0, "/materials/2/ior: must be > 0, got 0"},
       {"/materials/2/ior", -1.5, "/materials/2/ior: must be > 0, got -1.5"},
       {"/materials/2/albedo", 0.5,
@@ -204,10 +204,31 @@ TEST(SceneJson, InsideVisibleSphereRoundTrips) {
   EXPECT_EQ(b.geometry.spheres[1].radius, a.geometry.spheres[1].radius);
 }
 
+// The scene may choose its integrator and that integrator's knobs: the tracer stores them (bench/
+// knows the integrators and checks both), and they round-trip.
+TEST(SceneJson, IntegratorChoiceIsStoredAndRoundTrips) {
+  json doc = valid_scene();
+  doc["integrator"] = {{"name", "photon"}, {"k", 20}, {"filter", "box"}};
+  const tracer::Scene a = tracer::scene_from_json(doc);
+  EXPECT_EQ(a.integrator.name, "photon");
+  EXPECT_EQ(a.integrator.knobs, (json{{"k", 20}, {"filter", "box"}}));
+  const tracer::Scene b = tracer::parse_scene_json(tracer::scene_to_json(a).dump());
+  EXPECT_EQ(b.integrator.name, "photon");
+  EXPECT_EQ(b.integrator.knobs, a.integrator.knobs);
+  doc["integrator"] = "spd";
+  EXPECT_EQ(tracer::scene_from_json(doc).integrator.name, "spd");
+  EXPECT_TRUE(tracer::scene_from_json(valid_scene()).integrator.name.empty());
+  EXPECT_FALSE(tracer::scene_to_json(tracer::scene_from_json(valid_scene())).contains("integrator"));
+  for (const json& bad : {json(3), json{{"k", 20}}, json(""), json{{"name", ""}}}) {
+    doc["integrator"] = bad;
+    EXPECT_EQ(error_of(doc).rfind("/integrator: ", 0), 0u) << bad.dump() << ": " << error_of(doc);
+  }
+}
+
 TEST(SceneJson, GeneratedScenesRoundTripThroughFiles) {
   const std::string path =
       (std::filesystem::temp_directory_path() / "accelbench_scene_json_test.json").string();
-  for (const char* name : {"refraction", "five", "spheres8000"}) {
+  for (const char* name : {"refraction", "five", "spheres8000", "ring", "cornell", "furnace"}) {
     const tracer::Scene a = scenes_gen::generate(name, {});
     tracer::save_scene_file(a, path);
     const tracer::Scene b = tracer::load_scene_file(path);

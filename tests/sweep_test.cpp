@@ -697,4 +697,71 @@ TEST(SweepSpd, ValidatesAtAReducedResolutionAndClaimsNoSpeedup) {
   fs::remove_all(dir);
 }
 
+// Integrator knobs are sweep axes: each value crossed with every structure, naive measured once
+// per value, rows carrying the knobs used and the integrator's statistics, and (with "images")
+// each row's image. Bad values name their JSON pointer before anything runs.
+TEST(SweepIntegratorKnobs, CrossesThemAndRecordsTheMaps) {
+  const fs::path dir = temp_dir("photon");
+  std::ofstream(dir / "p.json") << json{{"name", "p"},
+                                        {"scenes", {"furnace"}},
+                                        {"structures", {"naive", "bvh"}},
+                                        {"integrator", "photon"},
+                                        {"integrator_knobs", {{"k", {10, 30}}, {"global_photons", 2000}}},
+                                        {"images", true},
+                                        {"resolution", "8x6"},
+                                        {"repetitions", 1},
+                                        {"warmup", 0}}
+                                       .dump();
+  const auto d = bench::load_sweep_file((dir / "p.json").string());
+  const auto configs = bench::expand(d);
+  ASSERT_EQ(configs.size(), 4u);  // 2 values of k x (naive, bvh)
+  std::set<std::string> settings;
+  for (const auto& c : configs) settings.insert(c.structure + " " + c.integrator_params.dump());
+  EXPECT_EQ(settings, (std::set<std::string>{"naive {\"global_photons\":2000,\"k\":10}",
+                                             "naive {\"global_photons\":2000,\"k\":30}",
+                                             "bvh {\"global_photons\":2000,\"k\":10}",
+                                             "bvh {\"global_photons\":2000,\"k\":30}"}));
+  const int st = run_cli({"sweep", "--config", (dir / "p.json").string(), "--out", (dir / "p-out.json").string(),
+                          "--quiet"},
+                         {});
+  ASSERT_TRUE(WIFEXITED(st) && WEXITSTATUS(st) == 0) << st;
+  const json results = read_json(dir / "p-out.json");
+  ASSERT_EQ(results["rows"].size(), 4u);
+  for (const auto& row : results["rows"]) {
+    EXPECT_EQ(row["status"], "ok") << row.dump();
+    EXPECT_EQ(row["integrator"], "photon");
+    // Every knob used: the furnace scene's own (max_photon_depth 1000), the swept ones on top.
+    const json& used = row["integrator_stats"]["counting"]["params"];
+    EXPECT_EQ(used["k"], row["integrator_params"]["k"]);
+    EXPECT_EQ(used["max_photon_depth"], 1000);
+    const json& global = row["integrator_stats"]["counting"]["maps"]["global"];
+    EXPECT_EQ(global["stored"], 2000);
+    EXPECT_GT(global["build_ms"].get<double>(), 0.0);
+    EXPECT_GT(row["integrator_stats"]["counting"]["gather"]["lookups"].get<int>(), 0);
+    EXPECT_TRUE(row["integrator_stats"]["counting"]["gather"].contains("photons_visited_per_lookup"));
+    EXPECT_TRUE(row["integrator_stats"]["timed"]["timings"].contains("photon_trace_ms"));
+    ASSERT_TRUE(row.contains("image")) << row.dump();
+    EXPECT_TRUE(fs::exists(row["image"].get<std::string>())) << row.dump();
+    if (row["structure"] == "bvh") {
+      EXPECT_EQ(row["image_hash"], row["naive_image_hash"]);
+    }
+  }
+  EXPECT_TRUE(valid_against_schema(results, dir));
+
+  std::ofstream(dir / "bad.json") << json{{"scenes", {"furnace"}}, {"structures", {"naive"}},
+                                          {"integrator", "photon"}, {"integrator_knobs", {{"cone_k", {1, 0.5}}}}}
+                                         .dump();
+  const std::string got = [&] {
+    try {
+      bench::load_sweep_file((dir / "bad.json").string());
+    } catch (const SweepError& e) {
+      return std::string(e.what());
+    }
+    return std::string("(no error)");
+  }();
+  EXPECT_NE(got.find("/integrator_knobs/cone_k/1: photon: parameter 'cone_k' must be in [1.0, "), std::string::npos)
+      << got;
+  fs::remove_all(dir);
+}
+
 }  // namespace

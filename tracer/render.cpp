@@ -92,6 +92,7 @@ RenderResult render(const Scene& scene, const accel::AnyAccel& accel, const Rend
                     const Integrator& integrator, const nlohmann::json& params) {
   const nlohmann::json full = integrator.params(params);
   render_frame_detail::make_frame(scene, options, FilmSampling::PixelSamples);  // checks options
+  if (integrator.check) integrator.check(scene, options, full);
   return integrator.render(scene, accel, options, full);
 }
 

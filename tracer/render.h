@@ -65,6 +65,10 @@ struct Integrator {
   /// Console lines (each ending in a newline) about a render's RenderResult::stats; nullptr when
   /// the integrator keeps none.
   std::string (*summary)(const nlohmann::json& stats) = nullptr;
+  /// Checks completed knobs against the scene and the options before any work is done (the
+  /// photon maps' memory against options.limits); throws like `params`. nullptr: nothing to check.
+  void (*check)(const Scene& scene, const RenderOptions& options,
+                const nlohmann::json& params) = nullptr;
 };
 
 /// Renders `scene` through `accel`, which must have been built over
