@@ -11,8 +11,9 @@
 //   Build/N:<photons>/<structure>/threads:<1|all>   tree construction, wall-clock time (the
 //       balanced tree also on every core).
 //
-// Photons and queries: bench/photon_standin.h's Cornell-box stand-in (4096 camera rays, the
-// diffuse hits of those that hit the box). Before anything is timed, each structure's answer
+// Photons and queries: the Cornell box's (scenes_gen "cornell", a box 2 units wide) global photon
+// map, traced by the photon integrator's global pass, and the diffuse first hits of its 64 x 64
+// camera rays (bench/photon_workload.h). Before anything is timed, each structure's answer
 // for every timed query is compared with an independent brute-force reference: the same photons
 // (original indices) and bit-equal squared distances, or for nanoflann, which orders equal
 // distances as it meets them, the same distances and the same photon wherever a distance is not
@@ -25,7 +26,7 @@
 //       --benchmark_out=results/bench_photon.json --benchmark_out_format=json
 
 #include "nanoflann_knn.h"
-#include "photon_standin.h"
+#include "photon_workload.h"
 
 #include "photon/photon_map.h"
 
@@ -43,9 +44,9 @@
 
 namespace {
 
+using bench::PhotonQuery;
+using bench::PhotonWorkload;
 using bench_photon::NanoflannPhotons;
-using bench_photon::PhotonBenchSet;
-using bench_photon::QueryPoint;
 using photon::GatherParams;
 using photon::Neighbors;
 using photon::Photon;
@@ -75,7 +76,7 @@ struct Reference {
   std::vector<Found> found;         // kMaxK slots per query
   std::vector<std::uint32_t> count;  // valid entries per query
 
-  Reference(const PhotonBenchSet& set, bool cull) {
+  Reference(const PhotonWorkload& set, bool cull) {
     const std::size_t nq = set.queries.size();
     found.resize(nq * kMaxK);
     count.resize(nq);
@@ -85,7 +86,7 @@ struct Reference {
       pool.emplace_back([&, t] {
         std::vector<Found> near;
         for (std::size_t q = t; q < nq; q += threads) {
-          const QueryPoint& qp = set.queries[q];
+          const PhotonQuery& qp = set.queries[q];
           for (float r2 = 1e-4f;; r2 *= 4.0f) {
             near.clear();
             for (std::uint32_t i = 0; i < set.photons.size(); ++i) {
@@ -96,7 +97,7 @@ struct Reference {
               if (d2 < r2 && (!cull || set.photons[i].arrives_from_side_of(qp.normal)))
                 near.push_back({d2, i});
             }
-            if (near.size() >= kMaxK || r2 > 64.0f) break;  // the box is 1 unit: 64 is all
+            if (near.size() >= kMaxK || r2 > 64.0f) break;  // the box's diagonal is 3.5: 64 is all
           }
           std::sort(near.begin(), near.end(), before);
           const std::size_t n = std::min<std::size_t>(near.size(), kMaxK);
@@ -122,7 +123,7 @@ struct Reference {
 };
 
 struct Dataset {
-  PhotonBenchSet set;
+  PhotonWorkload set;
   std::unique_ptr<Reference> reference[2];  // [cull]
   std::map<std::string, std::unique_ptr<PhotonMap>> maps;
   std::unique_ptr<NanoflannPhotons> nano;
@@ -148,7 +149,7 @@ Dataset& dataset(std::size_t n) {
   auto& d = all[n];
   if (!d) {
     d = std::make_unique<Dataset>();
-    d->set = bench_photon::cornell_standin(n, kGrid, kSeed);
+    d->set = bench::cornell_photon_workload(n, kGrid, kGrid, kSeed);
   }
   return *d;
 }
@@ -177,7 +178,7 @@ std::string validate_map(Dataset& d, const PhotonMap& map, const GatherParams& g
   const Reference& ref = d.ref(gp.cull);
   Neighbors nb;
   for (std::size_t q = 0; q < d.set.queries.size(); q += stride) {
-    const QueryPoint& qp = d.set.queries[q];
+    const PhotonQuery& qp = d.set.queries[q];
     map.gather(qp.position, qp.normal, gp, nb);
     std::vector<Found> got;
     for (const photon::Neighbor& n : nb.items()) got.push_back({n.d2, map.original_index(n.slot)});
@@ -250,7 +251,7 @@ void bm_nanoflann(benchmark::State& st, std::size_t n, int k, float radius) {
     if (!same) return fail(st, "nanoflann, query " + std::to_string(q) + ": want " + describe(want));
   }
   for (auto _ : st) {
-    for (const QueryPoint& qp : queries) {
+    for (const PhotonQuery& qp : queries) {
       benchmark::DoNotOptimize(search(qp.position));
       benchmark::DoNotOptimize(d2.data());
     }

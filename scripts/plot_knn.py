@@ -204,7 +204,7 @@ def main(argv):
     p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     p.add_argument("json", help="bench_photon --benchmark_out file")
     p.add_argument("--out", default="results", help="folder for the figure (default results)")
-    p.add_argument("--source", default="photons: Cornell-box stand-in (bench/photon_standin.h)",
+    p.add_argument("--source", default="photons: the Cornell box's global map (bench/photon_workload.h)",
                    help="where the photons came from, printed on the figure")
     args = p.parse_args(argv)
     try:
