@@ -93,6 +93,7 @@ void from_json(const nlohmann::json& j, PhotonParams& p) {
   r.read_enum("photon_tree", p.photon_tree,
               {{"balanced", PhotonTreeKind::Balanced},
                {"sliding_midpoint", PhotonTreeKind::SlidingMidpoint},
+               {"median_buckets", PhotonTreeKind::MedianBuckets},
                {"brute_force", PhotonTreeKind::BruteForce}});
   r.read("leaf_size", p.leaf_size, 1, 256);
   r.read("cull", p.cull);

@@ -33,10 +33,12 @@ struct PhotonParams {
   /// Final-gather rays per diffuse camera-path hit, in [0, 65536]; 0 = read the global map
   /// directly there instead.
   int final_gather_rays = 0;
-  /// Photon kd-tree variant: balanced (the paper's), sliding_midpoint or brute_force.
+  /// Photon kd-tree variant: balanced (the paper's), sliding_midpoint, median_buckets or
+  /// brute_force (photon/photon_tree_params.h); the image is bit-identical across them.
   PhotonTreeKind photon_tree = PhotonTreeKind::Balanced;
-  /// Photons per leaf of the bucket trees (sliding_midpoint), in [1, 256].
-  int leaf_size = 8;
+  /// Photons per leaf of the bucket trees (sliding_midpoint, median_buckets), in [1, 256];
+  /// the kd-tree's own default.
+  int leaf_size = PhotonTreeParams{}.leaf_size;
   /// The paper's optimisation 2: reject photons from behind the surface before the heap.
   bool cull = true;
   /// The paper's optimisation 3: compute each photon's squared distance once (never changes the

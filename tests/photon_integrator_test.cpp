@@ -200,7 +200,7 @@ TEST(PhotonStructures, TreeVariantsAndCacheDistancesLeaveTheImageBitIdentical) {
   const tracer::Scene scene = scenes_gen::generate("cornell", {});
   json knobs = small_cornell_knobs();
   const auto ref = render(scene, "bvh", knobs, 2, 24, 24).image.content_hash();
-  for (const char* tree : {"sliding_midpoint", "brute_force"}) {
+  for (const char* tree : {"sliding_midpoint", "median_buckets", "brute_force"}) {
     knobs["photon_tree"] = tree;
     EXPECT_EQ(render(scene, "bvh", knobs, 2, 24, 24).image.content_hash(), ref) << tree;
   }
