@@ -140,11 +140,12 @@ struct TimeBatch {
     for (std::size_t i = 0; i < batch.size(); ++i) {
       Contender& c = batch[i];
       if (!c.row) continue;
-      if (c.p.m.status == RowStatus::Ok && !complete) continue;  // timed in part: measured again on resume
+      // Stopped before the rounds were complete: timed in part, measured again on --resume.
+      if (c.p.m.status == RowStatus::Ok && !complete && naive.status == RowStatus::Ok) continue;
       const MeasureOptions& o = c.naive ? nmo : cmo;
       if (c.p.m.status == RowStatus::Ok && o.inspect && c.p.image) inspect(scene, c.p, o);
       std::optional<Reference> reference;
-      if (naive.status == RowStatus::Ok && naive.render_ms) {
+      if (naive.status == RowStatus::Ok && complete) {
         // Naive's median over the rounds this row was timed in (every round: naive is in all).
         const auto paired = rounds.paired_wall(0, i);
         reference = Reference{naive.image_hash, paired.first.empty() ? 0.0 : median_of(paired.first), naive.rays};
