@@ -72,6 +72,9 @@ std::vector<json> parse_knob_values_text(const std::string& text, const std::str
     if (!(lo > 0.0) || !(hi >= lo))
       throw SweepError(flag + ": a log-spaced range LO:HI:N needs 0 < LO <= HI, got '" + text + "'");
     const bool integers = is_integer_text(range[0]) && is_integer_text(range[1]);
+    // Integers up to 2^53: every one is exact as a double, and llround cannot overflow.
+    if (integers && hi > 9007199254740992.0)
+      throw SweepError(flag + ": an integer range LO:HI:N needs HI <= 2^53, got '" + range[1] + "'");
     for (int i = 0; i < n; ++i) {
       const double t = n == 1 ? 0.0 : double(i) / double(n - 1);
       const double v = lo * std::pow(hi / lo, t);

@@ -135,6 +135,13 @@ TEST(FrontsDefinition, BadInputIsOneLineNamingWhatIsWrong) {
   EXPECT_THROW(bench::parse_knob_values_text("", "--values x"), bench::SweepError);
   EXPECT_THROW(bench::parse_knob_values_text("0:10:4", "--values x"), bench::SweepError);
   EXPECT_EQ(bench::parse_knob_values_text("1:64:7", "--values x"), (std::vector<json>{1, 2, 4, 8, 16, 32, 64}));
+  // Integers past 2^53 were rounded by llround past the range of long long (found by fuzz_cli).
+  try {
+    bench::parse_knob_values_text("1:99999999999999999999:3", "--values x");
+    ADD_FAILURE() << "an integer range past 2^53 was accepted";
+  } catch (const bench::SweepError& e) {
+    EXPECT_STREQ(e.what(), "--values x: an integer range LO:HI:N needs HI <= 2^53, got '99999999999999999999'");
+  }
   EXPECT_EQ(bench::parse_knob_values_text("0.5,2,true,abc", "--values x"),
             (std::vector<json>{0.5, 2, true, "abc"}));
 }
