@@ -1,6 +1,7 @@
 #include "integrators.h"
 
 #include "photon/photon_integrator.h"
+#include "photon/ppm_integrator.h"
 
 #include <array>
 #include <stdexcept>
@@ -9,11 +10,12 @@ namespace bench {
 
 namespace {
 
-const std::array<const tracer::Integrator*, 3>& table() {
-  static const std::array<const tracer::Integrator*, 3> kTable = {
+const std::array<const tracer::Integrator*, 4>& table() {
+  static const std::array<const tracer::Integrator*, 4> kTable = {
       &tracer::whitted_integrator(),
       &tracer::spd_integrator(),
       &photon::photon_integrator(),
+      &photon::ppm_integrator(),
   };
   return kTable;
 }

@@ -87,6 +87,9 @@ void trace_tile(const Frame& f, const Camera& camera, int tile, const Tracer& tr
   for (int gy = gy0; gy < gy1; ++gy)
     for (int gx = gx0; gx < gx1; ++gx) {
       const int x = f.window.x0 + gx, y = f.window.y0 + gy;
+      // A tracer that keeps per-pixel state (a progressive reference's visible points) is told
+      // which pixel (PixelCorners: which corner) the camera rays that follow belong to.
+      if constexpr (requires { tracer.begin_pixel(x, y); }) tracer.begin_pixel(x, y);
       Color c;
       if (f.film == FilmSampling::PixelCorners) {
         c = tracer.trace_eye(camera.ray_through(float(x), float(y)), rays);
@@ -150,9 +153,10 @@ RenderResult render_frame_with(const Scene& scene, const RenderOptions& options,
 /// Renders `scene` through `accel` in tiles on every worker thread. `make_tracer(isect)` is called
 /// once per worker with that worker's intersector (its own traversal counters) and returns the
 /// worker's tracer: an object with `Color trace_eye(const Ray&, RayCounts&) const` that traces one
-/// camera ray and counts it (a tracer with `using Scalar = double` gets RayD camera rays). Every
-/// film sample depends on its ray alone, so the image and the summed counts are the same at any
-/// thread count. A worker's exception is rethrown here.
+/// camera ray and counts it (a tracer with `using Scalar = double` gets RayD camera rays), and
+/// optionally `void begin_pixel(int x, int y) const`, called before the camera rays of each pixel.
+/// Every film sample depends on its ray alone, so the image and the summed counts are the same at
+/// any thread count. A worker's exception is rethrown here.
 template <class MakeTracer>
 RenderResult render_frame(const Scene& scene, const accel::AnyAccel& accel,
                           const RenderOptions& options, FilmSpec film,

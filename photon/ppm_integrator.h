@@ -1,0 +1,58 @@
+#pragma once
+// Progressive photon mapping (Hachisuka, Ogaki and Jensen 2008), `--integrator ppm`: the
+// consistent estimator that makes the reference for the photon-mapping integrator's knobs
+// (docs/accuracy.md). It converges to the radiance the photon integrator estimates, with no
+// knob of the photon integrator's own.
+//
+// Camera paths are the Whitted integrator's (tracer/whitted.h), as in the photon integrator:
+// direct light through shadow rays, mirror reflection and Fresnel refraction are exact. Every
+// diffuse surface a camera path meets becomes a visible point with a radius R, an accumulated
+// photon count N and accumulated flux tau. Then `passes` photon passes each trace
+// `photons_per_pass` photons into a fresh caustic and global map (photon/photon_tracing.h; the
+// two together hold all light after at least one bounce, the part the photon maps estimate) and
+// every visible point gathers the M photons within R (photon/photon_map.h) and updates
+//   N' = N + alpha M,   R'^2 = R^2 (N + alpha M) / (N + M),   tau' = (tau + Phi_M) R'^2 / R^2
+// with alpha = 2/3 (pbrt-v3's SPPM), so R shrinks and the estimate tau / (pi R^2 passes) of the
+// flux density becomes consistent: its variance and its bias both vanish as passes grow, and its
+// mean squared error falls as N^-2/3 (Knaus and Zwicker 2011; Kaplanyan and Dachsbacher 2013).
+
+#include "tracer/render.h"
+
+#include <nlohmann/json.hpp>
+
+#include <cstdint>
+#include <optional>
+
+namespace photon {
+
+struct PpmParams {
+  /// Photon passes, each with fresh maps, in [1, 1000000].
+  int passes = 64;
+  /// Photons stored per map (caustic and global) per pass, photons, in [1, 2^31-1].
+  int photons_per_pass = 100000;
+  /// Radius every visible point starts with, world units, > 0; unset ("auto"): each point's
+  /// distance to the initial_photons-th nearest photon of a pilot pass (photons not counted in
+  /// the estimate), at most 1/20 of the diagonal of the box around the scene's bounded primitives.
+  std::optional<float> initial_radius;
+  /// Photons of the pilot pass within an automatic initial radius, in [1, 2^20].
+  int initial_photons = 32;
+  /// The share of new photons kept in N at each pass, in (0, 1]: 2/3 balances the bias and the
+  /// variance that the shrinking radius leaves (pbrt-v3's default).
+  float alpha = 2.0f / 3.0f;
+  /// Surface interactions per photon path before it is dropped, in [1, 1000].
+  int max_photon_depth = 64;
+  /// Seed of the photon paths; pass i draws from a seed of its own derived from it.
+  std::uint64_t seed = 1;
+};
+
+/// Every knob, initial_radius as "auto" or its number.
+void to_json(nlohmann::json& j, const PpmParams& p);
+
+/// Reads the knobs given (an object, possibly empty). Throws accel::ConfigError, one line naming
+/// the knob ("ppm: parameter 'passes' must be in [1, 1000000], got 0").
+void from_json(const nlohmann::json& j, PpmParams& p);
+
+/// The row of the integrator table.
+const tracer::Integrator& ppm_integrator();
+
+}  // namespace photon
