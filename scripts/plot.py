@@ -18,7 +18,13 @@ and prints a Markdown table of the best measured speedups beside the paper's. Re
 `accelbench fronts` (docs/accuracy.md) give instead, per scene:
 
   fronts_<scene>  error against median render time for each accuracy knob, the Pareto front
-                  highlighted and the reference's own error (its floor) marked
+                  highlighted and the reference's own error (its floor) marked (fronts of another
+                  integrator than whitted: fronts_<integrator>_<scene>)
+  convergence_<scene>
+                  log-log MSE against photons per map for the photon-count fronts (progressive
+                  photon mapping's passes, the photon integrator's global/caustic photons), each
+                  with its least-squares slope after the reference's own MSE is subtracted, and
+                  the theory's N^-2/3 for progressive photon mapping
 
 Usage: scripts/plot.py results/paper.json results/scaling.json [results/fronts-*.json] [--out results]
 """
@@ -617,9 +623,94 @@ def plot_fronts(doc, out_dir):
             ax.legend(fontsize=7, loc="best")
         for ax in list(axes.flat)[len(mine):]:
             ax.set_visible(False)
-        fig.suptitle(f"Speed/accuracy fronts, {scene} ({setting})", fontsize=10)
+        integrator = doc["sweep"].get("integrator", "whitted")
+        fig.suptitle(f"Speed/accuracy fronts, {integrator} on {scene} ({setting})", fontsize=10)
         fig.tight_layout()
-        save(fig, out_dir, f"fronts_{scene}")
+        save(fig, out_dir, f"fronts_{scene}" if integrator == "whitted" else f"fronts_{integrator}_{scene}")
+        drawn.append(scene)
+    return drawn
+
+
+# Photon-count knobs: (integrator, knob) -> photons per map of a row's integrator_params.
+PHOTON_COUNTS = {
+    ("ppm", "passes"): lambda p: p.get("passes", 64) * p.get("photons_per_pass", 100000),
+    ("photon", "global_photons"): lambda p: p.get("global_photons"),
+    ("photon", "caustic_photons"): lambda p: p.get("caustic_photons"),
+}
+
+
+def convergence_series(doc):
+    """{scene: [(label, [(N, mse)], floor_mse)]} of a fronts document's photon-count fronts."""
+    integrator = doc["sweep"].get("integrator", "whitted")
+    out = {}
+    for front in doc.get("fronts", []):
+        count = PHOTON_COUNTS.get((integrator, front["front"]))
+        if count is None:
+            continue
+        pts = []
+        for r in ok_rows(doc["rows"]):
+            if r.get("scene") != front["scene"] or r.get("front") != front["front"]:
+                continue
+            rmse = (r.get("error") or {}).get("rmse")
+            n = count(r.get("integrator_params", {}))
+            if rmse is not None and rmse > 0 and n:
+                pts.append((float(n), rmse * rmse))
+        ref = front.get("reference", {})
+        floor_rmse = (ref.get("floor") or {}).get("rmse", 0.0) if isinstance(ref.get("floor"), dict) else 0.0
+        if not floor_rmse and doc["sweep"]["fronts"].get("metric", "rmse") == "rmse":
+            floor_rmse = front.get("floor") or 0.0
+        label = f"{integrator} {front['front']}"
+        out.setdefault(front["scene"], []).append((label, sorted(pts), floor_rmse * floor_rmse))
+    return out
+
+
+def fit_slope(pts, floor_mse):
+    """Least-squares slope of log(MSE - floor) against log N over the points at least 4x above
+    the reference's own MSE; None with fewer than three such points."""
+    use = [(n, m - floor_mse) for n, m in pts if m > 4.0 * floor_mse]
+    if len(use) < 3:
+        return None, use
+    slope, icpt = np.polyfit(np.log([n for n, _ in use]), np.log([m for _, m in use]), 1)
+    return (float(slope), float(icpt)), use
+
+
+def plot_convergence(docs, out_dir):
+    """Log-log MSE against photons per map, per scene, over every photon-count front given."""
+    by_scene = {}
+    for doc in docs:
+        for scene, series in convergence_series(doc).items():
+            by_scene.setdefault(scene, []).extend(series)
+    drawn = []
+    for scene, series in by_scene.items():
+        fig, ax = plt.subplots(figsize=(6.4, 4.6))
+        for i, (label, pts, floor_mse) in enumerate(series):
+            if not pts:
+                continue
+            color = f"C{i}"
+            ax.plot([n for n, _ in pts], [m for _, m in pts], "o", color=color, ms=5,
+                    label=f"{label} (MSE)")
+            fit, use = fit_slope(pts, floor_mse)
+            if fit:
+                slope, icpt = fit
+                xs = np.array([use[0][0], use[-1][0]])
+                ax.plot(xs, np.exp(icpt) * xs ** slope + floor_mse, "-", color=color, lw=1.2,
+                        label=f"{label}: fitted slope {slope:.3f}")
+                print(f"plot: {scene} {label}: MSE slope {slope:.3f} over {len(use)} points "
+                      f"(N {use[0][0]:.3g} to {use[-1][0]:.3g}), reference MSE {floor_mse:.3g} subtracted")
+                if label.startswith("ppm"):
+                    ax.plot(xs, np.exp(icpt) * xs[0] ** slope * (xs / xs[0]) ** (-2.0 / 3.0), ":",
+                            color="k", lw=1, label="theory N^-2/3 (Knaus & Zwicker 2011)")
+            if floor_mse > 0:
+                ax.axhline(floor_mse, color=color, ls="--", lw=0.8, alpha=0.7, label=f"{label}: reference MSE")
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel("photons per map (all passes)")
+        ax.set_ylabel("MSE against the reference")
+        ax.set_title(f"Convergence with photon count, {scene}", fontsize=10)
+        ax.grid(True, which="both", alpha=0.25)
+        ax.legend(fontsize=7, loc="best")
+        fig.tight_layout()
+        save(fig, out_dir, f"convergence_{scene}")
         drawn.append(scene)
     return drawn
 
@@ -644,6 +735,7 @@ def main(argv):
     for doc in fronts_docs:
         if not plot_fronts(doc, args.out):
             print("plot: skipped a fronts file: it holds no fronts", file=sys.stderr)
+    plot_convergence(fronts_docs, args.out)
     if not ok_rows(rows):
         return 0
     drawn = {
