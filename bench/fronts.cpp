@@ -60,6 +60,7 @@ const char* metric_name(FrontMetric m) { return m == FrontMetric::Rmse ? "rmse" 
 json to_json(const FrontsSettings& s) {
   return {{"groups", s.groups},
           {"fixed", s.fixed},
+          {"reference", s.reference},
           {"metric", metric_name(s.metric)},
           {"epsilon", s.epsilon},
           {"seeds", s.seeds}};
@@ -71,12 +72,15 @@ FrontsSettings fronts_settings_from_json(const json& j) {
     if (!j.is_object()) throw SweepError("must be an object");
     for (const auto& [key, value] : j.items()) {
       (void)value;
-      if (key != "groups" && key != "fixed" && key != "metric" && key != "epsilon" && key != "seeds")
+      if (key != "groups" && key != "fixed" && key != "reference" && key != "metric" && key != "epsilon" &&
+          key != "seeds")
         throw SweepError("/" + key + ": unknown key");
     }
     s.groups = j.at("groups").get<std::vector<std::vector<std::string>>>();
     s.fixed = j.at("fixed");
     if (!s.fixed.is_object()) throw SweepError("/fixed: must be an object");
+    s.reference = j.value("reference", json::object());  // absent in files of earlier versions
+    if (!s.reference.is_object()) throw SweepError("/reference: must be an object");
     const std::string metric = j.at("metric").get<std::string>();
     if (metric == "rmse") s.metric = FrontMetric::Rmse;
     else if (metric == "rel_mse") s.metric = FrontMetric::RelMse;
@@ -96,7 +100,7 @@ FrontsSettings fronts_settings_from_json(const json& j) {
 std::string group_name(const std::vector<std::string>& knobs) { return join(knobs, "*"); }
 
 ReferenceSpec group_reference(const std::string& integrator, const std::vector<std::string>& group,
-                              const json& fixed, int width, int height) {
+                              const json& fixed, int width, int height, const json& overrides) {
   ReferenceSpec spec;
   spec.width = width;
   spec.height = height;
@@ -122,6 +126,19 @@ ReferenceSpec group_reference(const std::string& integrator, const std::vector<s
     spec.stochastic = spec.stochastic || row->stochastic_reference;
   }
   spec.integrator = chosen;
+  if (!overrides.empty()) {
+    const json known = integrator_named(chosen, "reference").params(json::object());
+    for (const auto& [k, v] : overrides.items()) {
+      if (!known.contains(k))
+        throw SweepError("--reference-set: the reference integrator " + chosen + " has no knob '" + k + "'");
+      spec.params[k] = v;
+    }
+    try {
+      integrator_named(chosen, "reference").params(spec.params);
+    } catch (const std::exception& e) {
+      throw SweepError(std::string("--reference-set: ") + e.what());
+    }
+  }
   if (spec.stochastic && !integrator_named(chosen, "reference").params(json::object()).contains("seed"))
     throw SweepError("reference integrator " + chosen + " has no seed knob for independent halves");
   return spec;
@@ -174,7 +191,7 @@ SweepDefinition fronts_definition(const FrontsRequest& r) {
     }
     for (const auto& [k, v] : r.settings.fixed.items()) axes[k] = {v};
     d.integrator_knobs.push_back(std::move(axes));
-    group_reference(r.integrator, group, r.settings.fixed, r.width, r.height);  // throws on a bad mix
+    group_reference(r.integrator, group, r.settings.fixed, r.width, r.height, r.settings.reference);  // throws on a bad mix
   }
   for (const auto& [knob, values] : r.values) {
     (void)values;
@@ -210,7 +227,7 @@ FrontsInspector::FrontsInspector(const SweepDefinition& definition, ReferenceOpt
 const AccuracyReference& FrontsInspector::reference(const tracer::Scene& scene, const accel::AnyAccel& built,
                                                     const std::vector<std::string>& group) {
   const auto t0 = Clock::now();
-  ReferenceSpec spec = group_reference(integrator_, group, settings_.fixed, width_, height_);
+  ReferenceSpec spec = group_reference(integrator_, group, settings_.fixed, width_, height_, settings_.reference);
   const std::string key = reference_key(scene, spec, settings_.epsilon);
   auto it = references_.find(key);
   if (it == references_.end()) {
@@ -254,17 +271,20 @@ void FrontsInspector::operator()(const tracer::Scene& scene, const accel::AnyAcc
   // (spp, photon counts): a deterministic reference (depth 64) is rendered with the row's own
   // seed, so comparing other seeds' images with it would count their sampling noise as error.
   if (settings_.seeds >= 2 && has_seed_ && ref.spec.stochastic && !knobs.count("seed")) {
-    const std::uint64_t base = mo.integrator_params.value("seed", std::uint64_t(0));
+    // The timed image's knobs (the scene's own under the requested ones) with their defaults
+    // filled in: the extra seeds follow on from its seed, whatever the integrator's default.
+    const tracer::Integrator& integrator = integrator_named(mo.integrator, "integrator");
+    const json timed = integrator.params(scene_integrator_params(scene, mo.integrator, mo.integrator_params));
+    const std::uint64_t base = timed.value("seed", std::uint64_t(0));
     tracer::PixelMoments moments;
     moments.add(image);
     bool stochastic = true;
-    const tracer::Integrator& integrator = integrator_named(mo.integrator, "integrator");
     tracer::RenderOptions ro;
     ro.threads = mo.threads;
     ro.width = mo.width;
     ro.height = mo.height;
     for (int s = 1; s < settings_.seeds; ++s) {
-      json p = mo.integrator_params;
+      json p = timed;
       p["seed"] = base + std::uint64_t(s);
       const auto r0 = Clock::now();
       const tracer::RenderResult r = tracer::render(scene, built, ro, integrator, p);

@@ -31,6 +31,9 @@ struct FrontsSettings {
   std::vector<std::vector<std::string>> groups;
   /// Knobs held at one value in every render, the references' included (an object).
   nlohmann::json fixed = nlohmann::json::object();
+  /// Knobs of the references' integrator set over their recipe (an object; --reference-set):
+  /// a cheaper or stronger reference than the table's. Part of every reference's cache key.
+  nlohmann::json reference = nlohmann::json::object();
   FrontMetric metric = FrontMetric::Rmse;  ///< Metric of the front and of tune.
   double epsilon = tracer::kRelMseEpsilon;  ///< Epsilon of the relative MSE.
   /// Renders per configuration with independent seeds for the bias/variance split (the timed
@@ -46,10 +49,13 @@ FrontsSettings fronts_settings_from_json(const nlohmann::json& j);
 /// A group's name: its knobs joined by '*' ("max_depth", "max_depth*spp").
 std::string group_name(const std::vector<std::string>& knobs);
 
-/// The reference recipe of a knob group of `integrator` (accuracy_knobs.h), with the fixed knobs,
-/// at width x height. Throws SweepError when a knob has no row or the knobs' references disagree.
+/// The reference recipe of a knob group of `integrator` (accuracy_knobs.h), with the fixed knobs
+/// and then `overrides` (knobs of the reference integrator) on top, at width x height. Throws
+/// SweepError when a knob has no row, the knobs' references disagree, or an override names a knob
+/// the reference integrator does not have.
 ReferenceSpec group_reference(const std::string& integrator, const std::vector<std::string>& group,
-                              const nlohmann::json& fixed, int width, int height);
+                              const nlohmann::json& fixed, int width, int height,
+                              const nlohmann::json& overrides = nlohmann::json::object());
 
 /// A fronts run as the command line asks for it.
 struct FrontsRequest {

@@ -108,6 +108,8 @@ void add_fronts_flags(CLI::App& cmd, FrontsFlags& f) {
   cmd.add_flag("--joint", f.joint, "Vary every listed knob jointly (their cross product)");
   cmd.add_option("--values", f.values, "KNOB=v1,v2,... or KNOB=LO:HI:N (log-spaced); default: the knob's range");
   cmd.add_option("--set", f.set, "KNOB=VALUE held in every render and in the references");
+  cmd.add_option("--reference-set", f.reference_set,
+                 "KNOB=VALUE of the reference integrator over its recipe (e.g. passes=64 for a cheaper ppm reference)");
   cmd.add_option("--integrator", f.integrator, "Integrator whose knobs are studied: " + integrator_names())
       ->capture_default_str();
   cmd.add_option("--accel", f.accel, "Structure every render goes through")->capture_default_str();
@@ -172,6 +174,11 @@ FrontsRequest request_from_flags(const FrontsFlags& f) {
     const auto [knob, value] = assignment(s, "--set");
     if (value.empty()) throw SweepError("--set: knob '" + knob + "' has no value");
     r.settings.fixed[knob] = value_from_text(value);
+  }
+  for (const std::string& s : f.reference_set) {
+    const auto [knob, value] = assignment(s, "--reference-set");
+    if (value.empty()) throw SweepError("--reference-set: knob '" + knob + "' has no value");
+    r.settings.reference[knob] = value_from_text(value);
   }
   if (f.metric == "rmse") r.settings.metric = FrontMetric::Rmse;
   else if (f.metric == "rel_mse") r.settings.metric = FrontMetric::RelMse;

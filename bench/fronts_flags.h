@@ -21,6 +21,7 @@ struct FrontsFlags {
   bool joint = false;                    ///< --joint: every listed knob in one group.
   std::vector<std::string> values;       ///< --values KNOB=v1,v2,... or KNOB=lo:hi:n.
   std::vector<std::string> set;          ///< --set KNOB=VALUE.
+  std::vector<std::string> reference_set;  ///< --reference-set KNOB=VALUE.
   std::string integrator = "whitted", accel = "bvh", resolution = "160x120";
   std::string validate_resolution = "40x30", metric = "rmse", name, cache, seed = "1";
   double epsilon = tracer::kRelMseEpsilon;

@@ -37,14 +37,8 @@ tracer::RenderResult render_with(const tracer::Scene& scene, const accel::AnyAcc
   o.width = width;
   o.height = height;
   o.limits = options.limits;
-  // A scene that chose this integrator brings its knobs; the sweep's go on top of them.
-  nlohmann::json knobs = options.integrator_params;
-  if (scene.integrator.name == options.integrator && scene.integrator.knobs.is_object() &&
-      !scene.integrator.knobs.empty()) {
-    knobs = scene.integrator.knobs;
-    for (const auto& [k, v] : options.integrator_params.items()) knobs[k] = v;
-  }
-  return tracer::render(scene, built, o, integrator_named(options.integrator, "integrator"), knobs);
+  return tracer::render(scene, built, o, integrator_named(options.integrator, "integrator"),
+                        scene_integrator_params(scene, options.integrator, options.integrator_params));
 }
 
 /// The reason a check against naive fails, or "" when hash and ray counts agree.
@@ -60,6 +54,17 @@ std::string mismatch(std::uint64_t hash, const tracer::RayCounts& rays, const Re
 }
 
 }  // namespace
+
+nlohmann::json scene_integrator_params(const tracer::Scene& scene, std::string_view integrator,
+                                       const nlohmann::json& requested) {
+  // A scene that chose this integrator brings its knobs; the requested ones go on top of them.
+  nlohmann::json knobs = requested;
+  if (scene.integrator.name == integrator && scene.integrator.knobs.is_object() && !scene.integrator.knobs.empty()) {
+    knobs = scene.integrator.knobs;
+    for (const auto& [k, v] : requested.items()) knobs[k] = v;
+  }
+  return knobs;
+}
 
 const char* status_name(RowStatus s) {
   switch (s) {

@@ -18,6 +18,7 @@
 #include <cstdint>
 #include <functional>
 #include <optional>
+#include <string_view>
 #include <span>
 #include <string>
 
@@ -32,6 +33,11 @@ enum class RowStatus {
 
 /// "ok", "failed" or "error".
 const char* status_name(RowStatus s);
+
+/// The knobs a sweep renders `integrator` with on `scene`: the scene's own knobs when the scene
+/// chose that integrator, with `requested` (a JSON object) on top; else `requested`.
+nlohmann::json scene_integrator_params(const tracer::Scene& scene, std::string_view integrator,
+                                       const nlohmann::json& requested);
 
 struct Measurement;
 struct MeasureOptions;
