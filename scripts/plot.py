@@ -614,6 +614,7 @@ def plot_fronts(doc, out_dir):
                 ax.axhline(floor, color="tab:blue", ls="--", lw=1, label="reference floor")
             ax.set_xscale("log")
             ax.set_yscale("log")
+            ax.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())  # no crowded minor labels
             ax.set_xlabel("median render time (ms)")
             ax.set_ylabel(metric.upper().replace("_", " ") if metric == "rmse" else f"relative MSE (eps {eps:g})")
             ref = front.get("reference", {})
