@@ -614,7 +614,10 @@ def plot_fronts(doc, out_dir):
                 ax.axhline(floor, color="tab:blue", ls="--", lw=1, label="reference floor")
             ax.set_xscale("log")
             ax.set_yscale("log")
-            ax.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())  # no crowded minor labels
+            # Times within a decade get minor labels; short ones, so that they do not collide.
+            short = matplotlib.ticker.FuncFormatter(lambda v, _: f"{v:.0f}" if v >= 1 else f"{v:.2g}")
+            ax.xaxis.set_minor_formatter(short)
+            ax.tick_params(axis="x", which="both", labelsize=7)
             ax.set_xlabel("median render time (ms)")
             ax.set_ylabel(metric.upper().replace("_", " ") if metric == "rmse" else f"relative MSE (eps {eps:g})")
             ref = front.get("reference", {})
