@@ -12,6 +12,7 @@
 #include <string>
 #include <string_view>
 #include <initializer_list>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -47,6 +48,29 @@ class KnobReader {
     value = float(x);
   }
 
+  /// A 64-bit knob such as a seed: any integer >= 0.
+  void read(const char* key, std::uint64_t& value) {
+    const nlohmann::json* v = find(key);
+    if (!v) return;
+    if (!v->is_number_unsigned() && !(v->is_number_integer() && v->get<std::int64_t>() >= 0))
+      fail("parameter '" + std::string(key) + "' must be an integer >= 0, got " + v->dump());
+    value = v->get<std::uint64_t>();
+  }
+
+  /// A length in world units > 0, or "auto" (an empty optional: the owner picks it).
+  void read_auto_or_positive(const char* key, std::optional<float>& value) {
+    const nlohmann::json* v = find(key);
+    if (!v) return;
+    if (v->is_string() && v->get<std::string>() == "auto") {
+      value.reset();
+    } else if (v->is_number() && v->get<double>() > 0.0 && v->get<double>() <= 3.0e38) {
+      value = float(v->get<double>());
+    } else {
+      fail("parameter '" + std::string(key) + "' must be a number > 0 (world units) or \"auto\", got " +
+           v->dump());
+    }
+  }
+
   /// A boolean knob.
   void read(const char* key, bool& value) {
     const nlohmann::json* v = find(key);
@@ -74,6 +98,9 @@ class KnobReader {
       }
     fail("parameter '" + std::string(key) + "' must be one of " + valid + ", got '" + s + "'");
   }
+
+  /// The raw value of a knob the owner checks itself (nullptr when absent); marks it known.
+  const nlohmann::json* take(const char* key) { return find(key); }
 
   /// Throws for the first key that no read() asked for.
   void finish() const {

@@ -12,8 +12,6 @@ namespace {
 constexpr int kMaxPhotons = std::numeric_limits<int>::max();  ///< 2^31 - 1: PhotonMap's limit.
 constexpr int kMaxK = 1 << 20;
 
-[[noreturn]] void fail(const std::string& what) { throw accel::ConfigError("photon: " + what); }
-
 }  // namespace
 
 GatherParams PhotonParams::gather(float radius) const {
@@ -57,29 +55,9 @@ void to_json(nlohmann::json& j, const PhotonParams& p) {
 }
 
 void from_json(const nlohmann::json& j, PhotonParams& p) {
-  if (!j.is_null() && !j.is_object())
-    fail("parameters must be a JSON object, got " + std::string(j.type_name()));
-  // Two knobs KnobReader has no reader for ("auto" or a number; a 64-bit seed) are read here,
-  // the others by KnobReader, which also rejects unknown keys.
-  nlohmann::json rest = j.is_object() ? j : nlohmann::json::object();
-  if (const auto it = rest.find("max_radius"); it != rest.end()) {
-    if (it->is_string() && it->get<std::string>() == "auto") {
-      p.max_radius.reset();
-    } else if (it->is_number() && it->get<double>() > 0.0 && it->get<double>() <= 3.0e38) {
-      p.max_radius = float(it->get<double>());
-    } else {
-      fail("parameter 'max_radius' must be a number > 0 (world units) or \"auto\", got " +
-           it->dump());
-    }
-    rest.erase(it);
-  }
-  if (const auto it = rest.find("seed"); it != rest.end()) {
-    if (!it->is_number_unsigned() && !(it->is_number_integer() && it->get<std::int64_t>() >= 0))
-      fail("parameter 'seed' must be an integer >= 0, got " + it->dump());
-    p.seed = it->get<std::uint64_t>();
-    rest.erase(it);
-  }
-  accel::KnobReader r("photon", rest);
+  accel::KnobReader r("photon", j);
+  r.read_auto_or_positive("max_radius", p.max_radius);
+  r.read("seed", p.seed);
   r.read("global_photons", p.global_photons, 1, kMaxPhotons);
   r.read("caustic_photons", p.caustic_photons, 1, kMaxPhotons);
   r.read("k", p.k, 1, kMaxK);

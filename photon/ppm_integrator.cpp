@@ -309,31 +309,15 @@ void to_json(nlohmann::json& j, const PpmParams& p) {
 }
 
 void from_json(const nlohmann::json& j, PpmParams& p) {
-  if (!j.is_null() && !j.is_object()) fail("parameters must be a JSON object, got " + std::string(j.type_name()));
-  nlohmann::json rest = j.is_object() ? j : nlohmann::json::object();
-  if (const auto it = rest.find("initial_radius"); it != rest.end()) {
-    if (it->is_string() && it->get<std::string>() == "auto") {
-      p.initial_radius.reset();
-    } else if (it->is_number() && it->get<double>() > 0.0 && it->get<double>() <= 3.0e38) {
-      p.initial_radius = float(it->get<double>());
-    } else {
-      fail("parameter 'initial_radius' must be a number > 0 (world units) or \"auto\", got " + it->dump());
-    }
-    rest.erase(it);
+  accel::KnobReader r("ppm", j);
+  r.read_auto_or_positive("initial_radius", p.initial_radius);
+  r.read("seed", p.seed);
+  // alpha lives in (0, 1], an interval open at 0 that read()'s closed ranges cannot state.
+  if (const nlohmann::json* v = r.take("alpha")) {
+    if (!v->is_number() || !(v->get<double>() > 0.0 && v->get<double>() <= 1.0))
+      fail("parameter 'alpha' must be a number in (0, 1], got " + v->dump());
+    p.alpha = float(v->get<double>());
   }
-  if (const auto it = rest.find("seed"); it != rest.end()) {
-    if (!it->is_number_unsigned() && !(it->is_number_integer() && it->get<std::int64_t>() >= 0))
-      fail("parameter 'seed' must be an integer >= 0, got " + it->dump());
-    p.seed = it->get<std::uint64_t>();
-    rest.erase(it);
-  }
-  if (const auto it = rest.find("alpha"); it != rest.end()) {
-    if (!it->is_number() || !(it->get<double>() > 0.0 && it->get<double>() <= 1.0))
-      fail("parameter 'alpha' must be a number in (0, 1], got " + it->dump());
-    p.alpha = float(it->get<double>());
-    rest.erase(it);
-  }
-  accel::KnobReader r("ppm", rest);
   r.read("passes", p.passes, 1, 1000000);
   r.read("photons_per_pass", p.photons_per_pass, 1, kMaxPhotons);
   r.read("max_photon_depth", p.max_photon_depth, 1, 1000);
