@@ -4,6 +4,7 @@
 
 #include "accel/accel.h"
 #include "tracer/image_compare.h"
+#include "tracer/intersector.h"
 
 #include <algorithm>
 #include <chrono>
@@ -255,7 +256,8 @@ json run_stability(const tracer::Scene& scene, const StabilityOptions& o, std::o
     json structures = json::array();
     progress << ", " << o.structures.size() << " structures" << std::flush;
     for (const CheckedStructure& s : o.structures) {
-      const accel::AnyAccel built = accel::make_accel(s.name, s.params, boxes);
+      accel::AnyAccel built = accel::make_accel(s.name, s.params, boxes);
+      tracer::attach_geometry(built, scene_v.geometry);  // the wide BVHs' SIMD sphere leaves, as render uses them
       const Rendered r = render_once(scene_v, built, o, tracer::Precision::Float);
       const bool same_image = r.result.image == f.result.image;
       const bool same_rays = r.result.rays == f.result.rays;
