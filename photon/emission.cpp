@@ -44,9 +44,12 @@ void orthonormal_basis(const Vec3& n, Vec3& t, Vec3& b) {
   b = Vec3(c, sign + n.y * n.y * a, -n.y);
 }
 
-Emission::Emission(const tracer::Scene& scene, PhotonPass pass) {
-  const SpecularBounds spec = pass == PhotonPass::Caustic ? specular_bounds(scene) : SpecularBounds{};
-  if (pass == PhotonPass::Caustic && !spec.all && spec.box.is_empty()) return;  // nothing to aim at
+Emission::Emission(const tracer::Scene& scene, PhotonPass pass, bool uniform_fallback) {
+  SpecularBounds spec = pass == PhotonPass::Caustic ? specular_bounds(scene) : SpecularBounds{};
+  if (pass == PhotonPass::Caustic && !spec.all && spec.box.is_empty()) {
+    if (!uniform_fallback) return;  // nothing to aim at
+    spec.all = true;
+  }
   const Vec3 centre = 0.5f * (spec.box.lo + spec.box.hi);
   const float radius = 0.5f * glm::length(spec.box.hi - spec.box.lo);
   for (const tracer::PointLight& l : scene.lights) {

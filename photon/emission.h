@@ -63,7 +63,10 @@ struct EmittingLight {
 /// The emission of one pass over a scene.
 class Emission {
  public:
-  Emission(const tracer::Scene& scene, PhotonPass pass);
+  /// The emission of `pass`. A caustic pass in a scene without specular primitives has nothing
+  /// to aim at and emits nothing, unless `uniform_fallback`: then it emits into every direction
+  /// (what a tracer that does not model the scene's needs would do; for measuring that).
+  Emission(const tracer::Scene& scene, PhotonPass pass, bool uniform_fallback = false);
 
   /// True when no light emits into the pass.
   bool empty() const { return lights_.empty(); }

@@ -303,6 +303,7 @@ PhotonMaps make_photon_maps(const tracer::Scene& scene, const accel::AnyAccel& a
   po.seed = params.seed;
   po.threads = options.threads;
   po.count_traversal = options.count_traversal;
+  po.uniform_fallback = !params.skip_unneeded_maps;
   const auto run = [&](PhotonPass pass, int target, PassResult& out, PhotonMap& map,
                        double& build_ms) {
     po.pass = pass;

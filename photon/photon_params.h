@@ -47,7 +47,8 @@ struct PhotonParams {
   /// Seed of every random number of the photon paths and the final gather.
   std::uint64_t seed = 1;
   /// Trace only the maps the scene can use (no specular surface: no caustic map; no diffuse
-  /// surface that reflects: no global map). false traces both, to measure what skipping saves.
+  /// surface that reflects: no global map). false traces both, a caustic pass with nothing to
+  /// aim at then emitting everywhere: what a tracer that does not check would spend.
   bool skip_unneeded_maps = true;
 
   /// The gather knobs of a map lookup, with the radius resolved to `radius` (world units).

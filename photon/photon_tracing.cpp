@@ -26,7 +26,7 @@ constexpr std::uint64_t kMaxRound = std::uint64_t(1) << 30;
 PassResult trace_photon_pass(const tracer::Scene& scene, const accel::AnyAccel& accel,
                              const PassOptions& o) {
   PassResult result;
-  const Emission emission(scene, o.pass);
+  const Emission emission(scene, o.pass, o.uniform_fallback);
   if (emission.empty() || o.target == 0) return result;
   const auto start = std::chrono::steady_clock::now();
   const int threads = tracer::resolve_threads(o.threads);

@@ -38,6 +38,9 @@ struct PassOptions {
   bool count_traversal = false;          ///< Gather the structure's TraversalCounters.
   /// Paths at most; 0 = 256 per photon asked for, plus 65536.
   std::uint64_t max_emitted = 0;
+  /// A caustic pass with no specular primitive to aim at emits into every direction instead of
+  /// not at all (Emission's uniform_fallback; skip_unneeded_maps = false).
+  bool uniform_fallback = false;
 };
 
 /// A traced pass: the photons of its map, and what it took.

@@ -265,12 +265,19 @@ TEST(PhotonMaps, OnlyTheMapsASceneNeedsAreTraced) {
       << c.global_pass.stopped;
   EXPECT_EQ(c.global_pass.emitted, 1000u);
 
-  // skip_unneeded_maps = false traces the caustic pass of the furnace anyway: it finds nothing to
-  // aim at, so it is empty, but asked for.
+  // skip_unneeded_maps = false traces the caustic pass of the furnace anyway: with nothing to aim
+  // at it emits everywhere, stores nothing (no specular bounce) and runs to its cap. That is the
+  // work the check saves.
   const tracer::RenderResult forced =
       render(scenes_gen::make_furnace_scene(1.0f, 0.5f, 100.0f), "naive",
-             {{"global_photons", 2000}, {"skip_unneeded_maps", false}}, 1, 8, 8);
-  EXPECT_FALSE(forced.stats["maps"]["caustic"].contains("skipped"));
+             {{"global_photons", 2000}, {"caustic_photons", 10}, {"skip_unneeded_maps", false}}, 1,
+             8, 8);
+  const json& caustic = forced.stats["maps"]["caustic"];
+  EXPECT_FALSE(caustic.contains("skipped"));
+  EXPECT_EQ(caustic["stored"], 0);
+  EXPECT_EQ(caustic["emitted"], 256 * 10 + 65536);
+  EXPECT_EQ(forced.image.content_hash(), furnace.image.content_hash());  // same light, more work
+  EXPECT_GT(forced.rays.photon, furnace.rays.photon + 256u * 10u);
 }
 
 // ---------------------------------------------------------------------------------------------
