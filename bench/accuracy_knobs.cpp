@@ -29,6 +29,13 @@ constexpr std::array kKnobs = {
     AccuracyKnob{"whitted", "spp", "samples",
                  "camera rays per pixel: more samples average away aliasing at edges",
                  "[1, 2, 4, 8, 16, 32, 64]", "", R"({"spp": 1024})", "", true},
+    // Float against double (issue 9's reference tracer): the reference is the double render at
+    // the front's own other knobs, so the double point has error 0 and float's error is its
+    // distance from double. The reference's own rounding (relative 2^-53 per operation) is not
+    // estimated: there is no wider type to check it against; its floor reads 0.
+    AccuracyKnob{"whitted", "precision", "",
+                 "arithmetic of the whole tracer: double is the reference, float is faster",
+                 R"(["float", "double"])", "", R"({"precision": "double"})", "", false},
     // The photon-mapping integrator's knobs all share one reference that has none of them:
     // progressive photon mapping (photon/ppm_integrator.h) run long, two halves with
     // independent seeds, its noise estimated from the halves. Its camera paths are the photon
