@@ -131,10 +131,6 @@ struct TimeBatch {
         if (!whole) break;
       }
     }
-    for (Contender& c : batch) {
-      summary.trace_s += c.p.m.spent_trace_s;
-      c.p.m.spent_trace_s = 0.0;  // naive stays for the next batch: count its time once
-    }
     // Rows: naive's first, then the others in configuration order.
     const Measurement& naive = batch[0].p.m;
     for (std::size_t i = 0; i < batch.size(); ++i) {
@@ -155,6 +151,11 @@ struct TimeBatch {
       }
       emit(make_row(*c.row, spec, primitives, c.naive ? nmo : cmo, c.p.m, reference), *c.row,
            describe(c.p.m, reference));
+    }
+    // After the rows: inspecting a row can render too (fronts' references and extra seeds).
+    for (Contender& c : batch) {
+      summary.trace_s += c.p.m.spent_trace_s;
+      c.p.m.spent_trace_s = 0.0;  // naive stays for the next batch: count its time once
     }
   }
 };
