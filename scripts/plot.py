@@ -588,19 +588,29 @@ def plot_fronts(doc, out_dir):
         setting = ""
         for ax, front in zip(axes.flat, mine):
             knobs = front["front"].split("*")
-            pts = []
+            pts, exact = [], []
             for r in ok_rows(doc["rows"]):
                 if r.get("scene") != scene or r.get("front") != front["front"]:
                     continue
                 err = (r.get("error") or {}).get(metric)
-                if err is None or err <= 0:
-                    continue  # a configuration equal to the reference (error 0) has no place on a log axis
-                pts.append((r["render_ms"]["median"], err, r.get("on_front", False),
-                            knob_label(r.get("integrator_params", {}), knobs)))
+                if err is None:
+                    continue
+                point = (r["render_ms"]["median"], err, r.get("on_front", False),
+                         knob_label(r.get("integrator_params", {}), knobs))
+                # A configuration equal to the reference (error 0, e.g. double on the precision
+                # front) has no place on a log axis: it is drawn below the others, marked.
+                (pts if err > 0 else exact).append(point)
                 setting = setting_text(r)
-            if not pts:
+            if not pts and not exact:
                 ax.set_visible(False)
                 continue
+            if exact:
+                bottom = min([p[1] for p in pts] + [1e-3]) / 10
+                ax.scatter([p[0] for p in exact], [bottom] * len(exact), marker="v", s=36, color="tab:red",
+                           label="error 0 (equals the reference)", zorder=3)
+                for t, _, _, label in exact:
+                    ax.annotate(label + ": error 0", (t, bottom), textcoords="offset points", xytext=(4, 3),
+                                fontsize=7, color="0.25")
             off = [p for p in pts if not p[2]]
             on = sorted((p for p in pts if p[2]), key=lambda p: p[0])
             ax.scatter([p[0] for p in off], [p[1] for p in off], s=22, color="0.6", label="dominated", zorder=2)

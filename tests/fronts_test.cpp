@@ -22,7 +22,9 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <string>
+#include <utility>
 
 namespace {
 
@@ -67,6 +69,20 @@ bench::FrontsRequest small_request() {
   r.warmup = 0;
   r.settings.seeds = 3;
   return r;
+}
+
+/// Run options writing into dir (`name`.json and `name`.jsonl), references cached in dir/cache, quiet.
+std::pair<bench::RunOptions, bench::ReferenceOptions> quiet_options(const fs::path& dir, const std::string& name) {
+  bench::RunOptions o;
+  o.out_path = (dir / (name + ".json")).string();
+  o.jsonl_path = (dir / (name + ".jsonl")).string();
+  o.progress = false;
+  bench::ReferenceOptions ro;
+  ro.cache_dir = (dir / "cache").string();
+  ro.validate_width = 8;
+  ro.validate_height = 6;
+  ro.progress = false;
+  return {o, ro};
 }
 
 std::string definition_error(const bench::FrontsRequest& r) {
@@ -223,15 +239,7 @@ TEST(Fronts, AnnotationMarksExactlyTheNonDominatedRows) {
 TEST(Fronts, RunEndToEndWithCachedReferencesAndResume) {
   const fs::path dir = temp_dir("run");
   const bench::SweepDefinition d = bench::fronts_definition(small_request());
-  bench::RunOptions o;
-  o.out_path = (dir / "t.json").string();
-  o.jsonl_path = (dir / "t.jsonl").string();
-  o.progress = false;
-  bench::ReferenceOptions ro;
-  ro.cache_dir = (dir / "cache").string();
-  ro.validate_width = 8;
-  ro.validate_height = 6;
-  ro.progress = false;
+  auto [o, ro] = quiet_options(dir, "t");
   const bench::FrontsSummary first = bench::run_fronts(d, o, ro);
   EXPECT_TRUE(first.sweep.complete);
   EXPECT_EQ(first.references_made, 2);  // one per group
@@ -284,6 +292,33 @@ TEST(Fronts, RunEndToEndWithCachedReferencesAndResume) {
   const std::string cmd = std::string(ACCELBENCH_PYTHON) + " " + (dir / "validate.py").string() + " " +
                           ACCELBENCH_SOURCE_DIR "/results/schema/results.schema.json " + o.out_path;
   EXPECT_EQ(std::system(cmd.c_str()), 0);
+  fs::remove_all(dir);
+}
+
+// Float against double: the reference is the double render, so double's error is exactly 0 and
+// float's is its (small, non-zero) distance from it; both are on the front (double is slower).
+TEST(Fronts, PrecisionFrontMeasuresFloatAgainstTheDoubleReference) {
+  const fs::path dir = temp_dir("precision");
+  bench::FrontsRequest r = small_request();
+  r.scenes = {bench::parse_scene_item("refraction")};
+  r.groups = {{"precision"}};
+  r.values.clear();
+  const bench::SweepDefinition d = bench::fronts_definition(r);
+  const auto [o, ro] = quiet_options(dir, "p");
+  bench::run_fronts(d, o, ro);
+  const json results = bench::read_results_file(o.out_path);
+  ASSERT_EQ(results["rows"].size(), 2u);
+  std::map<std::string, double> error;
+  for (const json& row : results["rows"]) {
+    ASSERT_EQ(row["status"], "ok") << row.dump();
+    error[row["integrator_params"]["precision"]] = row["error"]["rmse"];
+  }
+  EXPECT_EQ(error.at("double"), 0.0);
+  EXPECT_GT(error.at("float"), 0.0);
+  EXPECT_LT(error.at("float"), 1e-3);  // float rounding, not a different picture
+  ASSERT_EQ(results["fronts"].size(), 1u);
+  EXPECT_EQ(results["fronts"][0]["reference"]["params"]["precision"], "double");
+  EXPECT_EQ(results["fronts"][0]["floor"], 0.0);
   fs::remove_all(dir);
 }
 
