@@ -31,6 +31,10 @@ std::vector<std::string> split(const std::string& text, char sep) {
 /// A value as the command line gives it: a JSON number or boolean when it reads as one, else the
 /// text as a string (the integrator then checks it).
 json value_from_text(const std::string& text) {
+  // Arrays and objects are neither: never parsed, so deep nesting cannot cost a deep recursion
+  // (destroying a parsed value recurses once per level).
+  const auto first = text.find_first_not_of(" \t\n\r");
+  if (first == std::string::npos || text[first] == '[' || text[first] == '{') return text;
   const json v = json::parse(text, nullptr, /*allow_exceptions=*/false);
   if (v.is_number() || v.is_boolean()) return v;
   return text;

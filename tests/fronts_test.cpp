@@ -368,6 +368,9 @@ TEST(FrontsCli, BadInputGivesOneLine) {
       {"fronts five --knobs spp --values spp=0:4:3 --no-cache", "accelbench: --values spp: a log-spaced range"},
       {"fronts five --knobs spp --metric l2 --no-cache", "accelbench: --metric: must be rmse or rel_mse"},
       {"tune five --max-error 0.01", "accelbench: --max-error/--max-time: give --fronts FILE or --knobs LIST"},
+      // 100,000 nested brackets: a string to the integrator, never parsed as JSON.
+      {"fronts five --knobs spp --values spp=" + std::string(100000, '[') + " --no-cache",
+       "accelbench: --values: whitted: knob 'spp' must be an integer"},
   };
   for (const auto& c : cases) {
     const CliRun run = accelbench(c.args);
