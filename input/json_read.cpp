@@ -111,7 +111,9 @@ class Builder : public nlohmann::json_sax<json> {
         error_ = display_pointer(pointer(false)) + ": must be a finite number, got " + std::string(word);
         return false;
       }
-    error_ = display_pointer(pointer(false)) + ": invalid JSON: " + msg;
+    // nlohmann quotes the whole token it was reading ("last read: '...'"): as long as the input's
+    // longest string, and as raw as its bytes.
+    error_ = display_pointer(pointer(false)) + ": invalid JSON: " + one_line(msg, 160);
     return false;
   }
 
@@ -191,8 +193,7 @@ class Builder : public nlohmann::json_sax<json> {
 
 std::string display_pointer(std::string_view pointer) {
   if (pointer.empty()) return "(root)";
-  if (pointer.size() <= 80) return std::string(pointer);
-  return std::string(pointer.substr(0, 77)) + "...";
+  return one_line(pointer, 80);  // keys may hold newlines and any length (fuzzing found both)
 }
 
 json parse_json(std::string_view text, std::size_t max_depth) {
