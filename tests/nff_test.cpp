@@ -134,6 +134,8 @@ TEST(Nff, BrokenFilesGiveExactErrors) {
       {kView + "f 1 1 1 -0.5 0.5 10 0 0\n", "t.nff:8: 'f' values must be >= 0, got -0.500000"},
       {kView + "f 1 1 1 0.5\n", "t.nff:8: expected 8 numbers after 'f', got 4"},
       {kView + "c 0 0 0 1 0 0 0 1\n", "t.nff:8: 'c' base and apex are the same point"},
+      // 10^38 apart: the distance overflows float, and the axis would be zero (found by fuzzing).
+      {kView + "c 1 0 1e38 -0.5 1 1 0 -1\n", "t.nff:8: 'c' base and apex are too far apart or too close for float (their distance is not a finite non-zero float)"},
       {kView + "c 0 0 0 1 0 0 1 -1\n",
        "t.nff:8: 'c' radii must have the same sign (both < 0: inside visible)"},
       {kView + "c 0 0 0 0 0 0 1 0\n", "t.nff:8: 'c' radii are both zero"},

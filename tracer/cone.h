@@ -29,8 +29,16 @@ struct Cone {
   std::uint32_t material = 0;       ///< Index into Scene::materials.
 };
 
+/// Whether make_cone can build an axis from these ends: their distance must be a non-zero,
+/// finite float (ends 10^38 apart overflow it, ends 10^-30 apart underflow it; either way the
+/// axis would come out zero or not a number).
+inline bool cone_ends_usable(const Vec3& base, const Vec3& apex) {
+  const float h = glm::length(apex - base);
+  return h > 0.0f && std::isfinite(h);
+}
+
 /// A cone from its two end points and radii (as NFF writes it). Radii may be negative (both),
-/// which makes the inside the visible side. The caller checks that base != apex.
+/// which makes the inside the visible side. The caller checks cone_ends_usable(base, apex).
 inline Cone make_cone(const Vec3& base, float base_radius, const Vec3& apex, float apex_radius,
                       std::uint32_t material = 0) {
   Cone c;

@@ -270,6 +270,8 @@ class Parser {
     const Vec3 base = vec(v, 0), apex = vec(v, 4);
     const double r0 = v[3], r1 = v[7];
     if (base == apex) fail(cmd.line, "'c' base and apex are the same point");
+    if (!cone_ends_usable(base, apex))
+      fail(cmd.line, "'c' base and apex are too far apart or too close for float (their distance is not a finite non-zero float)");
     if ((r0 < 0.0 && r1 > 0.0) || (r0 > 0.0 && r1 < 0.0))
       fail(cmd.line, "'c' radii must have the same sign (both < 0: inside visible)");
     if (r0 == 0.0 && r1 == 0.0) fail(cmd.line, "'c' radii are both zero");

@@ -454,6 +454,8 @@ void read_cone(const json& v, const std::string& path, const MaterialIndex& mats
   if (o.has("apex")) {
     const Vec3 apex = read_vec3(o["apex"], o.path("apex"));
     if (apex == c.base) fail(o.path("apex"), "must differ from base");
+    if (!cone_ends_usable(c.base, apex))
+      fail(o.path("apex"), "is too far from base or too close for float (their distance is not a finite non-zero float)");
     c = make_cone(c.base, c.base_radius, apex, c.apex_radius);
   } else {
     c.axis = read_normal(o.require("axis"), o.path("axis"));
