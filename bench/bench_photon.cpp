@@ -31,6 +31,7 @@
 #include "photon/photon_map.h"
 
 #include <benchmark/benchmark.h>
+#include "validated_main.h"
 
 #include <algorithm>
 #include <bit>
@@ -344,15 +345,7 @@ void register_all() {
 }  // namespace
 
 int main(int argc, char** argv) {
-  benchmark::Initialize(&argc, argv);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 2;
-  register_all();
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  if (g_validation_failures) {
-    std::fprintf(stderr, "bench_photon: %d benchmark(s) failed validation against brute force\n",
-                 g_validation_failures);
-    return 1;
-  }
-  return 0;
+  return bench::run_validated_benchmarks(
+      argc, argv, register_all, g_validation_failures,
+      "bench_photon: %d benchmark(s) failed validation against brute force\n", /*bad_arguments_status=*/2);
 }

@@ -25,6 +25,7 @@
 #include "accel/accel.h"
 
 #include <benchmark/benchmark.h>
+#include "validated_main.h"
 
 #include <cstdio>
 #include <cstring>
@@ -166,15 +167,7 @@ void register_benchmarks() {
 }  // namespace
 
 int main(int argc, char** argv) {
-  benchmark::Initialize(&argc, argv);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-  register_benchmarks();
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  if (g_validation_failures > 0) {
-    std::fprintf(stderr, "bench_photon_render: %d benchmark(s) failed validation against naive\n",
-                 g_validation_failures);
-    return 1;
-  }
-  return 0;
+  return bench::run_validated_benchmarks(
+      argc, argv, register_benchmarks, g_validation_failures,
+      "bench_photon_render: %d benchmark(s) failed validation against naive\n");
 }

@@ -23,6 +23,7 @@
 #include "tracer/scene_io.h"
 
 #include <benchmark/benchmark.h>
+#include "validated_main.h"
 
 #include <algorithm>
 #include <bit>
@@ -511,15 +512,6 @@ void register_benchmarks() {
 }  // namespace
 
 int main(int argc, char** argv) {
-  benchmark::Initialize(&argc, argv);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-  register_benchmarks();
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  if (g_validation_failures > 0) {
-    std::fprintf(stderr, "bench_trace: %d structure(s) failed validation against naive\n",
-                 g_validation_failures);
-    return 1;
-  }
-  return 0;
+  return bench::run_validated_benchmarks(argc, argv, register_benchmarks, g_validation_failures,
+                                         "bench_trace: %d structure(s) failed validation against naive\n");
 }
