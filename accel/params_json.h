@@ -57,6 +57,14 @@ class KnobReader {
     value = v->get<std::uint64_t>();
   }
 
+  /// A 64-bit count in [lo, hi].
+  void read(const char* key, std::uint64_t& value, std::uint64_t lo, std::uint64_t hi) {
+    std::uint64_t x = value;
+    read(key, x);
+    if (x < lo || x > hi) fail_range(key, std::to_string(x), std::to_string(lo), std::to_string(hi));
+    value = x;
+  }
+
   /// A length in world units > 0, or "auto" (an empty optional: the owner picks it).
   void read_auto_or_positive(const char* key, std::optional<float>& value) {
     const nlohmann::json* v = find(key);

@@ -163,6 +163,7 @@ tracer::RenderResult render_ppm(const tracer::Scene& scene, const accel::AnyAcce
       po.pass = kind;
       po.target = std::uint64_t(params.photons_per_pass);
       po.max_depth = params.max_photon_depth;
+      po.max_emitted = params.max_paths;
       po.seed = pass_seed;
       po.threads = options.threads;
       PassResult traced = trace_photon_pass(lit, accel, po);
@@ -301,6 +302,7 @@ std::string ppm_summary(const nlohmann::json& stats) {
 void to_json(nlohmann::json& j, const PpmParams& p) {
   j = {{"passes", p.passes},
        {"photons_per_pass", p.photons_per_pass},
+       {"max_paths", p.max_paths},
        {"initial_radius", p.initial_radius ? nlohmann::json(*p.initial_radius) : nlohmann::json("auto")},
        {"initial_photons", p.initial_photons},
        {"alpha", p.alpha},
@@ -320,6 +322,7 @@ void from_json(const nlohmann::json& j, PpmParams& p) {
   }
   r.read("passes", p.passes, 1, 1000000);
   r.read("photons_per_pass", p.photons_per_pass, 1, kMaxPhotons);
+  r.read("max_paths", p.max_paths, std::uint64_t(0), std::uint64_t(1) << 40);
   r.read("max_photon_depth", p.max_photon_depth, 1, 1000);
   r.read("initial_photons", p.initial_photons, 1, 1 << 20);
   r.finish();

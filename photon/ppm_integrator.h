@@ -30,6 +30,12 @@ struct PpmParams {
   int passes = 64;
   /// Photons stored per map (caustic and global) per pass, photons, in [1, 2^31-1].
   int photons_per_pass = 100000;
+  /// Photon paths one map may emit in a pass before it stops short of photons_per_pass, paths,
+  /// in [0, 2^40]; 0 = the tracer's own cap (256 per photon asked for, plus 65536). A map cut
+  /// short keeps its photons at the light's power over the paths emitted, so its estimate stays
+  /// unbiased; what it bounds is the time a pass spends on light that rarely reaches a diffuse
+  /// surface (the ring's global map: about 260 paths per photon stored).
+  std::uint64_t max_paths = 0;
   /// Radius every visible point starts with, world units, > 0; unset ("auto"): each point's
   /// distance to the initial_photons-th nearest photon of a pilot pass (photons not counted in
   /// the estimate), at most 1/20 of the diagonal of the box around the scene's bounded primitives.

@@ -86,6 +86,33 @@ TEST(PpmFurnace, ConvergesToTheAnalyticValueWithinItsEstimatedNoise) {
   }
 }
 
+// max_paths cuts a pass short of photons_per_pass: every map of every pass (and the pilot pass)
+// then emits exactly max_paths paths, and the estimate stays unbiased because each photon carries
+// the light's power over the paths emitted.
+TEST(PpmFurnace, APassCutShortByMaxPathsStaysUnbiased) {
+  const double rho = 0.8, phi = 100.0;
+  const tracer::Scene scene = scenes_gen::make_furnace_scene(1.0f, float(rho), float(phi));
+  const double truth = rho * phi / (4.0 * std::numbers::pi * std::numbers::pi * (1.0 - rho));
+  const int passes = 16;
+  const std::uint64_t cap = 3000;  // about 4 photons stored per path at rho 0.8: 12,000 < 20,000 asked
+  json a = {{"passes", passes}, {"photons_per_pass", 20000}, {"max_paths", cap}, {"max_photon_depth", 1000},
+            {"seed", 11}};
+  json b = a;
+  b["seed"] = 12;
+  const tracer::RenderResult ra = render(scene, a, 2, 16, 16);
+  const tracer::RenderResult rb = render(scene, b, 2, 16, 16);
+  // The furnace needs only the global map: passes + the pilot pass, cap paths each.
+  EXPECT_EQ(ra.stats["photon_paths"].get<std::uint64_t>(), std::uint64_t(passes + 1) * cap);
+  EXPECT_LT(ra.stats["photons_stored"].get<std::uint64_t>(), std::uint64_t(passes + 1) * 20000);
+  const std::array<tracer::Image, 2> halves = {ra.image, rb.image};
+  const double noise_rmse = tracer::image_error(ra.image, rb.image).rmse / 2.0;
+  const tracer::ImageError e = tracer::image_error(tracer::mean_image(halves), flat(16, 16, truth));
+  EXPECT_LT(e.rmse, 1.5 * noise_rmse) << "truth " << truth;
+  EXPECT_LT(std::abs(e.mean_bias), 2.0 * noise_rmse);
+  std::printf("furnace rho 0.8, %d passes of %llu paths: rmse %.5g, noise %.5g, mean bias %.4g, truth %.5g\n", passes,
+              (unsigned long long)cap, e.rmse, noise_rmse, e.mean_bias, truth);
+}
+
 TEST(PpmDeterminism, BitIdenticalAtAnyThreadCount) {
   const tracer::Scene scene = scenes_gen::generate("cornell", {});
   const json knobs = {{"passes", 3}, {"photons_per_pass", 5000}};
@@ -114,6 +141,8 @@ TEST(PpmKnobs, BadKnobsAreOneLineNamingTheKnob) {
   EXPECT_NE(message({{"initial_radius", -1}}).find("'initial_radius'"), std::string::npos);
   EXPECT_NE(message({{"initial_photons", 0}}).find("'initial_photons'"), std::string::npos);
   EXPECT_NE(message({{"photons", 10}}).find("photons"), std::string::npos);
+  EXPECT_NE(message({{"max_paths", -1}}).find("'max_paths'"), std::string::npos);
+  EXPECT_NE(message({{"max_paths", 1LL << 41}}).find("'max_paths'"), std::string::npos);
   EXPECT_EQ(message(json::object()), "");
   for (const json& bad : {json{{"passes", 0}}, json{{"alpha", "x"}}})
     EXPECT_EQ(message(bad).find('\n'), std::string::npos);
