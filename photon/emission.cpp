@@ -36,14 +36,6 @@ std::uint32_t LightSequence::next() {
   return best;
 }
 
-void orthonormal_basis(const Vec3& n, Vec3& t, Vec3& b) {
-  const float sign = std::copysign(1.0f, n.z);
-  const float a = -1.0f / (sign + n.z);
-  const float c = n.x * n.y * a;
-  t = Vec3(1.0f + sign * n.x * n.x * a, sign * c, -sign * n.x);
-  b = Vec3(c, sign + n.y * n.y * a, -n.y);
-}
-
 Emission::Emission(const tracer::Scene& scene, PhotonPass pass, bool uniform_fallback) {
   SpecularBounds spec = pass == PhotonPass::Caustic ? specular_bounds(scene) : SpecularBounds{};
   if (pass == PhotonPass::Caustic && !spec.all && spec.box.is_empty()) {

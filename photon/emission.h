@@ -13,6 +13,7 @@
 
 #include "map_needs.h"
 
+#include "tracer/orthonormal_basis.h"
 #include "tracer/scene.h"
 
 #include <cstdint>
@@ -84,7 +85,6 @@ class Emission {
   std::vector<EmittingLight> lights_;
 };
 
-/// An orthonormal pair (t, b) completing the unit vector n (Duff et al. 2017, branchless).
-void orthonormal_basis(const Vec3& n, Vec3& t, Vec3& b);
+using tracer::orthonormal_basis;
 
 }  // namespace photon

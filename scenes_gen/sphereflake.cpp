@@ -2,6 +2,8 @@
 
 #include "framing.h"
 
+#include "tracer/orthonormal_basis.h"
+
 #include <glm/geometric.hpp>
 
 #include <array>
@@ -14,15 +16,6 @@ namespace {
 using tracer::Vec3;
 
 constexpr float kPi = 3.14159265358979f;
-
-/// A right-handed orthonormal frame with z = axis (Duff et al.'s branchless basis).
-void basis(const Vec3& z, Vec3& x, Vec3& y) {
-  const float sign = std::copysign(1.0f, z.z);
-  const float a = -1.0f / (sign + z.z);
-  const float b = z.x * z.y * a;
-  x = Vec3(1.0f + sign * z.x * z.x * a, sign * b, -sign * z.x);
-  y = Vec3(b, sign + z.y * z.y * a, -z.y);
-}
 
 /// The nine child directions in a frame whose z is the parent-to-sphere axis: six around the
 /// equator every 60 degrees and three at 60 degrees elevation between them, as in SPD "balls".
@@ -46,7 +39,7 @@ void add_flake(tracer::Geometry& g, const Vec3& centre, float radius, const Vec3
   g.spheres.push_back({centre, radius, 0});
   if (levels_left == 0) return;
   Vec3 x, y;
-  basis(axis, x, y);
+  tracer::orthonormal_basis(axis, x, y);  // a right-handed frame with z = axis
   const float child_radius = radius / 3.0f;
   for (const Vec3& l : local) {
     const Vec3 dir = glm::normalize(l.x * x + l.y * y + l.z * axis);
