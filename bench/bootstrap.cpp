@@ -35,15 +35,29 @@ double median_of(std::vector<double> values) {
   return quantile_sorted(values, 0.5);
 }
 
-Interval ratio_of_medians_interval(const std::vector<double>& numerator, const std::vector<double>& denominator,
-                                   double level, int resamples, std::uint64_t seed) {
+namespace {
+
+std::vector<double> round_ratios(const std::vector<double>& numerator, const std::vector<double>& denominator) {
   if (numerator.size() != denominator.size()) throw std::invalid_argument("unpaired samples");
-  std::vector<double> a(numerator.size()), b(numerator.size());
-  return percentile_interval(numerator.size(), level, resamples, seed, [&](const std::vector<std::size_t>& pick) {
-    for (std::size_t k = 0; k < pick.size(); ++k) a[k] = numerator[pick[k]], b[k] = denominator[pick[k]];
-    const double den = median_of(b);
-    return den > 0.0 ? median_of(a) / den : 0.0;
-  });
+  std::vector<double> ratios(numerator.size());
+  for (std::size_t r = 0; r < ratios.size(); ++r) {
+    if (!(denominator[r] > 0.0)) throw std::invalid_argument("a paired ratio's denominator must be > 0");
+    ratios[r] = numerator[r] / denominator[r];
+  }
+  return ratios;
+}
+
+}  // namespace
+
+double paired_ratio(const std::vector<double>& numerator, const std::vector<double>& denominator) {
+  return median_of(round_ratios(numerator, denominator));
+}
+
+Interval paired_ratio_interval(const std::vector<double>& numerator, const std::vector<double>& denominator,
+                               double level, int resamples, std::uint64_t seed) {
+  // Resampling rounds and taking the median of their ratios is the median's bootstrap over the
+  // rounds' ratios.
+  return median_interval(round_ratios(numerator, denominator), level, resamples, seed);
 }
 
 Interval median_interval(const std::vector<double>& values, double level, int resamples, std::uint64_t seed) {

@@ -26,8 +26,8 @@ nlohmann::json mixed_hardware(const nlohmann::json& machines);
 
 /// How every speedup in a results file is formed; written into each results file.
 inline constexpr const char* kSpeedupBasis =
-    "speedup = naive_render_ms / render_ms.median, both medians over the same interleaved rounds of "
-    "one run on one node (naive is timed again in every run, resumed or not); never a ratio across "
-    "runs or nodes";
+    "speedup = the median over the interleaved rounds this row was timed in of naive's render time "
+    "in that round over the row's (naive_render_ms: naive's median over the same rounds), one run on "
+    "one node (naive is timed again in every run, resumed or not); never a ratio across runs or nodes";
 
 }  // namespace bench

@@ -94,6 +94,7 @@ struct Measurement {
   std::optional<TimingStats> render_ms;  ///< Timed renders, wall clock, ms (only when ok).
   std::optional<TimingStats> cpu_ms;     ///< The same renders' CPU time (all render threads), ms.
   std::optional<Interval> render_ms_ci;  ///< 95% bootstrap interval of render_ms's median, ms.
+  std::optional<double> speedup;         ///< paired_ratio of naive's times over this row's, by round.
   std::optional<Interval> speedup_ci;    ///< 95% bootstrap interval of the speedup (paired rounds).
   bool noisy = false;                    ///< The interval is wider than the sweep's noise threshold.
   int remeasured = 0;                    ///< Extra passes of rounds it was given for being noisy.

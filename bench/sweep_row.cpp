@@ -79,8 +79,8 @@ nlohmann::json make_row(const SweepConfig& config, const SceneSpec& scene, std::
       row["no_speedup_reason"] = "naive was timed only at the validation resolution " +
                                  std::to_string(options.validate_width) + "x" +
                                  std::to_string(options.validate_height) + ", not at the timed resolution";
-    } else if (reference && reference->render_ms > 0.0 && m.render_ms->median > 0.0) {
-      row["speedup"] = reference->render_ms / m.render_ms->median;
+    } else if (reference && reference->render_ms > 0.0 && m.speedup) {
+      row["speedup"] = *m.speedup;
       if (m.speedup_ci) row["speedup_ci"] = {m.speedup_ci->lo, m.speedup_ci->hi};
     }
   }

@@ -104,11 +104,13 @@ struct TimeBatch {
         set_timings(m, rounds.samples(i));
         double width = m.render_ms_ci->relative_width(m.render_ms->median);
         if (i == 0) {
+          m.speedup = 1.0;
           m.speedup_ci = Interval{1.0, 1.0};
         } else if (!apart) {
           const auto [naive_ms, own_ms] = rounds.paired_wall(0, i);
-          m.speedup_ci = ratio_of_medians_interval(naive_ms, own_ms);
-          width = m.speedup_ci->relative_width(median_of(naive_ms) / median_of(own_ms));
+          m.speedup = paired_ratio(naive_ms, own_ms);
+          m.speedup_ci = paired_ratio_interval(naive_ms, own_ms);
+          width = m.speedup_ci->relative_width(*m.speedup);
         }
         m.noisy = width > definition.noise_threshold;
       }
@@ -267,9 +269,9 @@ RunSummary run_sweep(const SweepDefinition& definition, const RunOptions& option
     char buf[256];
     int n = std::snprintf(buf, sizeof buf, "ok, render %.2f ms [%.2f, %.2f], build %.2f ms", m.render_ms->median,
                           m.render_ms_ci->lo, m.render_ms_ci->hi, m.build_ms);
-    if (reference && m.speedup_ci)
-      n += std::snprintf(buf + n, sizeof buf - std::size_t(n), ", %.2fx naive [%.2f, %.2f]",
-                         reference->render_ms / m.render_ms->median, m.speedup_ci->lo, m.speedup_ci->hi);
+    if (reference && m.speedup && m.speedup_ci)
+      n += std::snprintf(buf + n, sizeof buf - std::size_t(n), ", %.2fx naive [%.2f, %.2f]", *m.speedup,
+                         m.speedup_ci->lo, m.speedup_ci->hi);
     if (m.noisy) std::snprintf(buf + n, sizeof buf - std::size_t(n), ", noisy");
     return std::string(buf);
   };

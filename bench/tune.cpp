@@ -172,8 +172,8 @@ TuneResult tune_with(TuneTarget& target, const std::string& structure, const std
       c.ratio_ci = {1.0, 1.0};
     } else {
       const auto [own, best] = rounds.paired_wall(contender_of[k], best_contender);
-      c.ratio = median_of(own) / median_of(best);
-      c.ratio_ci = ratio_of_medians_interval(own, best);
+      c.ratio = paired_ratio(own, best);
+      c.ratio_ci = paired_ratio_interval(own, best);
     }
     if (k == best_k || c.ratio_ci.lo <= 1.0) r.tie.push_back(r.candidates[k]);
     if (k != best_k && c.ratio_ci.lo <= 1.0) r.separated = false;
@@ -184,8 +184,8 @@ TuneResult tune_with(TuneTarget& target, const std::string& structure, const std
   r.candidates = sorted;
   const auto [naive_ms, best_ms] = rounds.paired_wall(0, best_contender);
   r.naive.render_ms = median_of(naive_ms);
-  r.best_speedup = median_of(naive_ms) / median_of(best_ms);
-  r.best_speedup_ci = ratio_of_medians_interval(naive_ms, best_ms);
+  r.best_speedup = paired_ratio(naive_ms, best_ms);
+  r.best_speedup_ci = paired_ratio_interval(naive_ms, best_ms);
   return r;
 }
 

@@ -36,7 +36,7 @@ struct TuneOptions {
 struct Confirmation {
   TimingStats render_ms;    ///< Its samples in the confirmation rounds, ms.
   Interval render_ms_ci;    ///< 95% interval of their median, ms.
-  double ratio = 1.0;       ///< Its median over the fastest candidate's, paired by round.
+  double ratio = 1.0;       ///< paired_ratio of its times over the fastest candidate's, by round.
   Interval ratio_ci;        ///< 95% bootstrap interval of that ratio.
 };
 
@@ -77,7 +77,7 @@ struct TuneResult {
   std::vector<std::size_t> tie;      ///< Candidates that cannot be told from best at 95% (best first; only best when separated).
   std::vector<std::size_t> flat;     ///< Candidates not shown slower than best by more than flat_tolerance.
   int confirm_rounds = 0;            ///< Interleaved rounds the confirmation ran.
-  double best_speedup = 0.0;         ///< Naive's median over best's, paired by round.
+  double best_speedup = 0.0;         ///< paired_ratio of naive's times over best's, by round.
   Interval best_speedup_ci;          ///< Its 95% bootstrap interval.
 };
 
