@@ -38,8 +38,9 @@ constexpr std::array kKnobs = {
                  R"(["float", "double"])", "", R"({"precision": "double"})", "", false},
     // The photon-mapping integrator's knobs all share one reference that has none of them:
     // progressive photon mapping (photon/ppm_integrator.h) run long, two halves with
-    // independent seeds, its noise estimated from the halves. Its camera paths are the photon
-    // integrator's (Whitted's), so it converges to what the photon integrator estimates.
+    // independent seeds, its noise estimated from the halves and its remaining bias from a
+    // render with 1/8 of its passes (group_reference in fronts.cpp). Its camera paths are the
+    // photon integrator's (Whitted's), so it converges to what the photon integrator estimates.
     AccuracyKnob{"photon", "global_photons", "photons",
                  "photons in the global map (indirect light): more is less noise, less blur, slower",
                  "[1000, 3000, 10000, 30000, 100000, 300000, 1000000]", "ppm", kPpmReference, "", true},

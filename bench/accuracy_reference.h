@@ -30,7 +30,8 @@ struct ReferenceSpec {
   nlohmann::json params = nlohmann::json::object();  ///< Its knobs (the halves add "seed").
   bool stochastic = false;  ///< Two halves with independent seeds, the reference their mean.
   /// Knobs of the weaker check render (empty: none) whose difference from the reference
-  /// estimates the reference's truncation error; rendered with half A's seed.
+  /// estimates the reference's truncation error (Whitted's depth 48 against 64) or bias (ppm's
+  /// passes / 8); rendered with half A's seed.
   nlohmann::json check = nlohmann::json::object();
   int width = 0;   ///< Image width, pixels (the front's resolution).
   int height = 0;  ///< Image height, pixels.
@@ -41,7 +42,8 @@ nlohmann::json to_json(const ReferenceSpec& s);
 /// The reference's own error, estimated when it is made. floor = sqrt(noise^2 + truncation^2).
 struct ReferenceFloor {
   double noise_rmse = 0.0;       ///< RMSE of the halves' mean from its expectation: RMSE(A, B)/2.
-  double truncation_rmse = 0.0;  ///< RMSE between the reference and the check render.
+  double truncation_rmse = 0.0;  ///< RMSE between the reference and the check render: what
+                                 ///< the halves cannot see (truncation, or ppm's remaining bias).
   double rmse = 0.0;             ///< The floor in RMSE, radiance units.
   double rel_mse = 0.0;          ///< The floor in relative MSE (same epsilon as the fronts).
   double epsilon = tracer::kRelMseEpsilon;  ///< That epsilon.

@@ -123,6 +123,16 @@ TEST(FrontsDefinition, ReferencesDependOnlyOnTheStudiedKnobs) {
   const bench::ReferenceSpec spp = bench::group_reference("whitted", {"spp"}, {{"max_depth", 5}}, 32, 24);
   EXPECT_EQ(spp.params, json({{"max_depth", 5}, {"spp", 1024}}));  // at the front's own depth
   EXPECT_TRUE(spp.stochastic);
+  // The photon knobs' ppm reference checks its bias against 1/8 of its passes, also when
+  // --reference-set changes them.
+  const bench::ReferenceSpec k = bench::group_reference("photon", {"k"}, json::object(), 32, 24);
+  EXPECT_EQ(k.integrator, "ppm");
+  EXPECT_TRUE(k.stochastic);
+  EXPECT_EQ(k.check, json({{"passes", 32}}));
+  EXPECT_EQ(bench::group_reference("photon", {"k"}, json::object(), 32, 24, {{"passes", 2048}}).check,
+            json({{"passes", 256}}));
+  EXPECT_EQ(bench::group_reference("photon", {"k"}, json::object(), 32, 24, {{"passes", 4}}).check,
+            json({{"passes", 1}}));
 }
 
 TEST(FrontsDefinition, BadInputIsOneLineNamingWhatIsWrong) {
