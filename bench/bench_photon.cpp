@@ -27,11 +27,11 @@
 
 #include "nanoflann_knn.h"
 #include "photon_workload.h"
+#include "validated_main.h"
 
 #include "photon/photon_map.h"
 
 #include <benchmark/benchmark.h>
-#include "validated_main.h"
 
 #include <algorithm>
 #include <bit>

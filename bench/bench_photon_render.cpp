@@ -17,6 +17,7 @@
 //   build/bin/bench_photon_render --benchmark_filter=PhotonTrace
 
 #include "photon/photon_integrator.h"
+#include "validated_main.h"
 
 #include "scenes_gen/generators.h"
 
@@ -25,7 +26,6 @@
 #include "accel/accel.h"
 
 #include <benchmark/benchmark.h>
-#include "validated_main.h"
 
 #include <cstdio>
 #include <cstring>

@@ -21,9 +21,9 @@
 #include "tracer/offset_ray.h"
 #include "tracer/render.h"
 #include "tracer/scene_io.h"
+#include "validated_main.h"
 
 #include <benchmark/benchmark.h>
-#include "validated_main.h"
 
 #include <algorithm>
 #include <bit>
