@@ -59,21 +59,24 @@ void bounds_fn(const RTCBoundsFunctionArguments* args) {
 
 const QueryContext& query_of(RTCIntersectContext* c) { return *reinterpret_cast<const QueryContext*>(c); }
 
+// The callbacks serve rtcIntersect1 and rtcOccluded1 (N = 1) and rtcIntersect16 (N = 16, lane
+// i being ray i of the caller's packet).
 void intersect_fn(const RTCIntersectFunctionNArguments* args) {
-  if (!args->valid[0]) return;
   const QueryContext& q = query_of(args->context);
-  if (q.test(q, args->primID)) {
-    auto* rh = reinterpret_cast<RTCRayHit*>(args->rayhit);  // N == 1 for rtcIntersect1
-    rh->ray.tfar = widen_up(q.ray->tmax);
-    rh->hit.primID = args->primID;
-    rh->hit.geomID = args->geomID;
+  RTCRayN* ray = RTCRayHitN_RayN(args->rayhit, args->N);
+  RTCHitN* hit = RTCRayHitN_HitN(args->rayhit, args->N);
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (!args->valid[i] || !q.test(q, i, args->primID)) continue;
+    RTCRayN_tfar(ray, args->N, i) = widen_up(q.rays[i].tmax);
+    RTCHitN_primID(hit, args->N, i) = args->primID;
+    RTCHitN_geomID(hit, args->N, i) = args->geomID;
   }
 }
 
 void occluded_fn(const RTCOccludedFunctionNArguments* args) {
-  if (!args->valid[0]) return;
   const QueryContext& q = query_of(args->context);
-  if (q.test(q, args->primID)) reinterpret_cast<RTCRay*>(args->ray)->tfar = -kInfinity;
+  for (unsigned i = 0; i < args->N; ++i)
+    if (args->valid[i] && q.test(q, i, args->primID)) RTCRayN_tfar(args->ray, args->N, i) = -kInfinity;
 }
 
 }  // namespace

@@ -20,7 +20,9 @@
 #include <embree3/rtcore.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <type_traits>
@@ -67,18 +69,27 @@ using Scene = RtcHandle<RTCScene, rtcReleaseScene>;
 /// which is the first member of a standard-layout struct, so it converts back to the whole.
 struct QueryContext {
   RTCIntersectContext rtc;  ///< Must stay first.
-  Ray* ray;                 ///< Our ray; the leaf function shortens its tmax.
+  Ray* rays;                ///< Our ray, or a packet's rays by lane; the leaf function shortens tmax.
   void* leaf;               ///< The caller's leaf closure.
   TraversalCounters* counters;  ///< Counting pass only; else null.
-  /// Calls the leaf closure for one primitive (one instantiation per closure type).
-  bool (*test)(const QueryContext& q, std::uint32_t prim);
+  /// Calls the leaf closure for one primitive and the ray of one lane (one instantiation per
+  /// closure type).
+  bool (*test)(const QueryContext& q, unsigned lane, std::uint32_t prim);
 };
 static_assert(std::is_standard_layout_v<QueryContext>, "Embree's context must be the first member");
 
+/// The single-ray leaf function (lane is 0).
 template <bool Count, class LeafFn>
-bool call_leaf(const QueryContext& q, std::uint32_t prim) {
+bool call_leaf(const QueryContext& q, unsigned lane, std::uint32_t prim) {
   if constexpr (Count) q.counters->prims_tested++;
-  return (*static_cast<LeafFn*>(q.leaf))(prim, *q.ray);
+  return (*static_cast<LeafFn*>(q.leaf))(prim, q.rays[lane]);
+}
+
+/// The packet leaf function, which takes the lane.
+template <bool Count, class LeafFn>
+bool call_packet_leaf(const QueryContext& q, unsigned lane, std::uint32_t prim) {
+  if constexpr (Count) q.counters->prims_tested++;
+  return (*static_cast<LeafFn*>(q.leaf))(std::size_t(lane), prim, q.rays[lane]);
 }
 
 struct MemoryMonitor;
@@ -112,6 +123,42 @@ class EmbreeAccel {
     rtcIntersect1(scene_.get(), &q.rtc, &rh);
   }
 
+  /// Closest hit for each of `rays` through rtcIntersect16, 16 rays at a time, flagged coherent:
+  /// Embree's packet traversal, the peer of intersect_packet in the wide BVHs. leaf_fn(lane, id,
+  /// ray) takes the ray's index in `rays`.
+  template <bool Count = false, class LeafFn>
+  void intersect_packet(std::span<Ray> rays, LeafFn&& leaf_fn, TraversalCounters* counters = nullptr) const {
+    constexpr std::size_t kLanes = 16;
+    for (std::size_t base = 0; base < rays.size(); base += kLanes) {
+      const std::size_t n = std::min(kLanes, rays.size() - base);
+      if constexpr (Count) counters->rays += n;
+      Lane<LeafFn> lane_fn{&leaf_fn, base};
+      embree_detail::QueryContext q = context<Count, true>(rays[base], lane_fn, counters);
+      q.rtc.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+      alignas(64) int valid[kLanes];
+      alignas(64) RTCRayHit16 rh;
+      for (std::size_t i = 0; i < kLanes; ++i) {
+        valid[i] = i < n ? -1 : 0;
+        const Ray& ray = rays[base + (i < n ? i : 0)];
+        rh.ray.org_x[i] = ray.org.x;
+        rh.ray.org_y[i] = ray.org.y;
+        rh.ray.org_z[i] = ray.org.z;
+        rh.ray.tnear[i] = widen_down(ray.tmin);
+        rh.ray.dir_x[i] = ray.dir.x;
+        rh.ray.dir_y[i] = ray.dir.y;
+        rh.ray.dir_z[i] = ray.dir.z;
+        rh.ray.time[i] = 0.0f;
+        rh.ray.tfar[i] = widen_up(ray.tmax);
+        rh.ray.mask[i] = 0xffffffffu;
+        rh.ray.id[i] = unsigned(i);
+        rh.ray.flags[i] = 0;
+        rh.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
+        rh.hit.primID[i] = RTC_INVALID_GEOMETRY_ID;
+      }
+      rtcIntersect16(valid, scene_.get(), &q.rtc, &rh);
+    }
+  }
+
   /// Any hit through rtcOccluded1: stops at the first primitive whose leaf_fn returns true.
   template <bool Count = false, class LeafFn>
   bool occluded(const Ray& ray_in, LeafFn&& leaf_fn, TraversalCounters* counters = nullptr) const {
@@ -134,15 +181,27 @@ class EmbreeAccel {
   }
 
  private:
-  template <bool Count, class LeafFn>
-  static embree_detail::QueryContext context(Ray& ray, LeafFn& leaf_fn, TraversalCounters* counters) {
+  /// A packet leaf function seen from one group of 16: lane i of the group is ray base + i.
+  template <class LeafFn>
+  struct Lane {
+    std::remove_reference_t<LeafFn>* leaf_fn;
+    std::size_t base;
+    bool operator()(std::size_t lane, std::uint32_t id, Ray& ray) const { return (*leaf_fn)(base + lane, id, ray); }
+  };
+
+  /// The query's context: `rays` is the ray, or lane 0 of a packet's rays.
+  template <bool Count, bool Packet = false, class LeafFn>
+  static embree_detail::QueryContext context(Ray& rays, LeafFn& leaf_fn, TraversalCounters* counters) {
     using L = std::remove_reference_t<LeafFn>;
     embree_detail::QueryContext q;
     rtcInitIntersectContext(&q.rtc);
-    q.ray = &ray;
+    q.rays = &rays;
     q.leaf = const_cast<void*>(static_cast<const void*>(std::addressof(leaf_fn)));
     q.counters = counters;
-    q.test = &embree_detail::call_leaf<Count, L>;
+    if constexpr (Packet)
+      q.test = &embree_detail::call_packet_leaf<Count, L>;
+    else
+      q.test = &embree_detail::call_leaf<Count, L>;
     return q;
   }
   static void fill(RTCRay& r, const Ray& ray) {

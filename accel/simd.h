@@ -24,10 +24,20 @@ static_assert(!std::is_void_v<Float4>, "xsimd offers no 4-float batch for this t
 /// The widest of 8 and 4 lanes this build has: what leaf tests run on.
 using FloatLeaf = std::conditional_t<std::is_void_v<FloatN<8>>, Float4, FloatN<8>>;
 
-/// Bit i set where lane i of `m` is true: one movemask on SSE and AVX batches.
+/// The batch a ray packet runs on, one ray per lane: 16 lanes where the target has AVX-512, else
+/// the leaf batch (8 or 4).
+using FloatPacket = std::conditional_t<std::is_void_v<FloatN<16>>, FloatLeaf, FloatN<16>>;
+
+/// Bit i set where lane i of `m` is true: one movemask on SSE and AVX batches, the mask
+/// register itself on AVX-512.
 template <class Batch>
 inline std::uint32_t mask_bits(const typename Batch::batch_bool_type& m) {
   using Arch = typename Batch::arch_type;
+#if XSIMD_WITH_AVX512F
+  if constexpr (Batch::size == 16 && std::is_base_of_v<xsimd::avx512f, Arch>) {
+    return std::uint32_t(static_cast<__mmask16>(m));
+  } else
+#endif
   if constexpr (Batch::size == 8 && std::is_base_of_v<xsimd::avx, Arch>) {
     return std::uint32_t(_mm256_movemask_ps(m));
   } else if constexpr (Batch::size == 4 && std::is_base_of_v<xsimd::sse2, Arch>) {
@@ -39,6 +49,26 @@ inline std::uint32_t mask_bits(const typename Batch::batch_bool_type& m) {
     for (std::size_t i = 0; i < Batch::size; ++i) bits |= std::uint32_t(lanes[i] != 0.0f) << i;
     return bits;
   }
+}
+
+/// The smallest lane of `b` (no NaN lanes).
+template <class Batch>
+inline float reduce_min(const Batch& b) {
+  alignas(64) float lanes[Batch::size];
+  b.store_aligned(lanes);
+  float m = lanes[0];
+  for (std::size_t i = 1; i < Batch::size; ++i) m = lanes[i] < m ? lanes[i] : m;
+  return m;
+}
+
+/// The largest lane of `b` (no NaN lanes).
+template <class Batch>
+inline float reduce_max(const Batch& b) {
+  alignas(64) float lanes[Batch::size];
+  b.store_aligned(lanes);
+  float m = lanes[0];
+  for (std::size_t i = 1; i < Batch::size; ++i) m = lanes[i] > m ? lanes[i] : m;
+  return m;
 }
 
 /// Index of the lowest set bit of a non-zero mask.

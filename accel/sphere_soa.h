@@ -7,11 +7,13 @@
 
 #include "geometry.h"
 #include "leaf_loop.h"
+#include "ray_packet.h"
 #include "simd.h"
 #include "sphere_hit.h"
 #include "stats.h"
 
 #include <algorithm>
+#include <bit>
 #include <cstdint>
 #include <limits>
 #include <span>
@@ -87,6 +89,30 @@ class SphereSoA {
       } while (bits);
     }
     return false;
+  }
+
+  /// The packet form of test(): each sphere of ids[begin, begin + count) against the rays of
+  /// `packet` in the lanes of `lanes`, one SIMD step per sphere; accept(lane_base + lane, id, t,
+  /// rays[lane]) for each finite hit, in id order per ray (closest hit only).
+  template <bool Count, class Batch, class LeafFn>
+  void test_packet(const std::uint32_t* ids, std::uint32_t begin, std::uint32_t count, std::uint32_t lanes,
+                   const RayPacket<Batch>& packet, std::span<Ray> rays, std::size_t lane_base, LeafFn& leaf_fn,
+                   TraversalCounters* counters) const {
+    if constexpr (Count) counters->prims_tested += std::uint64_t(count) * std::uint64_t(std::popcount(lanes));
+    for (std::uint32_t at = begin; at < begin + count; ++at) {
+      const Batch t = sphere_root_lanes(packet.org[0], packet.org[1], packet.org[2], packet.dir[0], packet.dir[1],
+                                        packet.dir[2], packet.dir_dot, packet.tmin, Batch(cx_[at]), Batch(cy_[at]),
+                                        Batch(cz_[at]), Batch(r_[at]));
+      std::uint32_t bits = simd::mask_bits<Batch>(t < Batch(kInfinity)) & lanes;
+      if (!bits) continue;
+      alignas(64) float ts[Batch::size];
+      t.store_aligned(ts);
+      do {
+        const int i = simd::first_lane(bits);
+        bits &= bits - 1u;
+        leaf_fn.accept(lane_base + std::size_t(i), ids[at], ts[i], rays[std::size_t(i)]);
+      } while (bits);
+    }
   }
 
  private:

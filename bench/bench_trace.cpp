@@ -1,5 +1,6 @@
 // Google Benchmark: closest-hit tracing through every structure on the paper's scenes, one
-// thread, 1024x768 camera rays (coherent) and rays spawned off the camera hits (incoherent);
+// thread, 1024x768 camera rays (coherent; and packets: the same rays by 4x4-pixel tiles, 16 at a
+// time through the structures that traverse packets) and rays spawned off the camera hits (incoherent);
 // any-hit queries of the shadow rays from the camera hits to every light (shadow); whole
 // renders (Render/: Whitted on spheres8000 at 1024x768, the SPD scenes at 256x256, all ray
 // kinds, one thread); plus build times over a grid of knobs.
@@ -37,6 +38,7 @@
 #include <map>
 #include <memory>
 #include <random>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -54,11 +56,21 @@ constexpr std::size_t kNaiveStride = 64;
 
 int g_validation_failures = 0;
 
-/// Camera rays, rays spawned off their hits, and shadow rays (any-hit queries) to the lights.
-enum class RaySet { Coherent, Incoherent, Shadow };
+/// Camera rays, the same rays in 4x4-pixel tiles traced as packets of 16, rays spawned off
+/// their hits, and shadow rays (any-hit queries) to the lights.
+enum class RaySet { Coherent, Packets, Incoherent, Shadow };
 const char* ray_set_name(RaySet s) {
-  return s == RaySet::Coherent ? "coherent" : s == RaySet::Incoherent ? "incoherent" : "shadow";
+  switch (s) {
+    case RaySet::Coherent: return "coherent";
+    case RaySet::Packets: return "packets";
+    case RaySet::Incoherent: return "incoherent";
+    case RaySet::Shadow: return "shadow";
+  }
+  return "?";
 }
+
+/// Side of the square pixel tile whose camera rays form one packet.
+constexpr int kTile = 4;
 
 /// Traces `rays` (closest hit) through one structure; the render loop is compiled per structure.
 void trace(const tracer::Geometry& geometry, const accel::AnyAccel& a, const std::vector<Ray>& rays,
@@ -66,6 +78,20 @@ void trace(const tracer::Geometry& geometry, const accel::AnyAccel& a, const std
   hits.resize(rays.size());
   tracer::with_intersector(geometry, a, false, [&](const auto& isect) {
     for (std::size_t i = 0; i < rays.size(); ++i) hits[i] = isect.closest(rays[i]);
+  });
+}
+
+/// Traces `rays` as packets of 16 consecutive rays (closest hit): structures with a packet
+/// traversal take each packet at once, the others ray by ray.
+void trace_packets(const tracer::Geometry& geometry, const accel::AnyAccel& a, const std::vector<Ray>& rays,
+                   std::vector<Hit>& hits) {
+  hits.resize(rays.size());
+  tracer::with_intersector(geometry, a, false, [&](const auto& isect) {
+    constexpr std::size_t kPacket = std::decay_t<decltype(isect)>::kPacketMax;
+    for (std::size_t i = 0; i < rays.size(); i += kPacket) {
+      const std::size_t n = std::min(kPacket, rays.size() - i);
+      isect.closest_packet(std::span<const Ray>(rays.data() + i, n), std::span<Hit>(hits.data() + i, n));
+    }
   });
 }
 
@@ -178,6 +204,22 @@ RayData& ray_data(const std::string& scene_name, RaySet set) {
   auto d = std::make_unique<RayData>();
   if (set == RaySet::Coherent) {
     d->rays = camera_rays(bs.scene);
+  } else if (set == RaySet::Packets) {
+    // The camera rays reordered tile by tile, with their reference and naive's timing.
+    const RayData& primary = ray_data(scene_name, RaySet::Coherent);
+    for (int ty = 0; ty < kHeight; ty += kTile)
+      for (int tx = 0; tx < kWidth; tx += kTile)
+        for (int y = ty; y < ty + kTile; ++y)
+          for (int x = tx; x < tx + kTile; ++x) {
+            const std::size_t i = std::size_t(y) * kWidth + std::size_t(x);
+            d->rays.push_back(primary.rays[i]);
+            d->reference.push_back(primary.reference[i]);
+          }
+    d->naive_sample = primary.naive_sample;
+    d->naive_s_per_ray = primary.naive_s_per_ray;
+    d->naive_stride = primary.naive_stride;
+    slot = std::move(d);
+    return *slot;
   } else if (set == RaySet::Incoherent) {
     const RayData& primary = ray_data(scene_name, RaySet::Coherent);
     d->rays = spawned_rays(bs.scene.geometry, primary.rays, primary.reference);
@@ -255,6 +297,9 @@ void bm_trace(benchmark::State& state, const std::string& scene_name, RaySet set
     if (any_hit) {
       occlude(bs.scene.geometry, a, rays, blocked);
       for (std::size_t i = 0; i < rays.size(); ++i) bad += blocked[i] != d.blocked[i];
+    } else if (set == RaySet::Packets) {
+      trace_packets(bs.scene.geometry, a, rays, hits);
+      bad = mismatches(hits, d.reference);
     } else {
       trace(bs.scene.geometry, a, rays, hits);
       bad = mismatches(hits, d.reference);
@@ -272,6 +317,9 @@ void bm_trace(benchmark::State& state, const std::string& scene_name, RaySet set
     if (any_hit) {
       occlude(bs.scene.geometry, a, rays, blocked);
       benchmark::DoNotOptimize(blocked.data());
+    } else if (set == RaySet::Packets && !is_naive) {
+      trace_packets(bs.scene.geometry, a, rays, hits);
+      benchmark::DoNotOptimize(hits.data());
     } else {
       trace(bs.scene.geometry, a, rays, hits);
       benchmark::DoNotOptimize(hits.data());
@@ -404,10 +452,10 @@ void bm_build_default(benchmark::State& state, const std::string& scene_name, co
 }
 
 /// Trace time over the tree knobs (max_depth, max_leaf_size) from the benchmark arguments.
-void bm_trace_knobs(benchmark::State& state, const std::string& name, json knobs) {
+void bm_trace_knobs(benchmark::State& state, RaySet set, const std::string& name, json knobs) {
   knobs["max_depth"] = state.range(0);
   knobs["max_leaf_size"] = state.range(1);
-  bm_trace(state, "spheres8000", RaySet::Coherent, name, knobs);
+  bm_trace(state, "spheres8000", set, name, knobs);
 }
 
 /// A structure as the benchmarks name it: factory name plus knobs.
@@ -450,7 +498,7 @@ std::vector<Config> tree_configs() {
 
 void register_benchmarks() {
   for (const char* scene : {"spheres8000", "five"})
-    for (RaySet set : {RaySet::Coherent, RaySet::Incoherent})
+    for (RaySet set : {RaySet::Coherent, RaySet::Packets, RaySet::Incoherent})
       for (const Config& c : trace_configs()) {
         const std::string bm =
             std::string("Trace/") + scene + "/" + ray_set_name(set) + "/" + c.label;
@@ -483,13 +531,14 @@ void register_benchmarks() {
           ->Iterations(rc.path.empty() ? 1 : 3)
           ->Unit(benchmark::kMillisecond);
     }
-  for (const Config& c : tree_configs()) {
-    const std::string bm = "TraceKnobs/spheres8000/coherent/" + c.label;
-    benchmark::RegisterBenchmark(bm.c_str(), bm_trace_knobs, c.name, c.knobs)
-        ->ArgNames({"max_depth", "max_leaf_size"})
-        ->ArgsProduct({{8, 16, 64}, {1, 4, 16}})
-        ->Unit(benchmark::kMillisecond);
-  }
+  for (RaySet set : {RaySet::Coherent, RaySet::Packets})
+    for (const Config& c : tree_configs()) {
+      const std::string bm = std::string("TraceKnobs/spheres8000/") + ray_set_name(set) + "/" + c.label;
+      benchmark::RegisterBenchmark(bm.c_str(), bm_trace_knobs, set, c.name, c.knobs)
+          ->ArgNames({"max_depth", "max_leaf_size"})
+          ->ArgsProduct({{8, 16, 64}, {1, 2, 4, 8, 16}})
+          ->Unit(benchmark::kMillisecond);
+    }
   // Build time at default knobs, every structure (Embree included), and on a million spheres.
   for (const char* scene : {"spheres8000", "random1M"})
     for (const Config& c : trace_configs()) {

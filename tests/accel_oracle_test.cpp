@@ -15,6 +15,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <random>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -249,6 +250,20 @@ void trace_all(const Intersector& isect, const std::vector<Ray>& rays, std::vect
   }
 }
 
+/// Closest hits of `rays` as packets of consecutive rays: full packets, then a short one, so
+/// that the packet traversals see mixed directions, intervals and unused lanes.
+template <class Intersector>
+std::vector<Hit> trace_packets(const Intersector& isect, const std::vector<Ray>& rays) {
+  std::vector<Hit> hits(rays.size());
+  constexpr std::size_t kPacket = Intersector::kPacketMax;
+  for (std::size_t i = 0; i < rays.size();) {
+    const std::size_t n = std::min(rays.size() - i, i == 0 ? std::size_t(5) : kPacket);
+    isect.closest_packet(std::span<const Ray>(rays.data() + i, n), std::span<Hit>(hits.data() + i, n));
+    i += n;
+  }
+  return hits;
+}
+
 Reference reference_for(const tracer::Geometry& geometry, std::uint32_t seed) {
   Reference ref;
   ref.rays = make_rays(geometry, seed);
@@ -274,27 +289,32 @@ std::string describe(const Ray& r) {
 /// Compares one build against the reference; returns the number of mismatching rays.
 int compare(const std::string& label, const tracer::Geometry& geometry, const accel::AnyAccel& a,
             const Reference& ref, bool counting) {
-  std::vector<Hit> closest;
+  std::vector<Hit> closest, packets;
   std::vector<bool> occluded;
   tracer::with_intersector(geometry, a, counting, [&](const auto& isect) {
     if constexpr (std::decay_t<decltype(isect)>::kCounting) {
       accel::TraversalCounters counters;
       trace_all(isect.with_counters(&counters), ref.rays, closest, occluded);
       EXPECT_EQ(counters.rays, 2 * ref.rays.size()) << label;
+      packets = trace_packets(isect.with_counters(&counters), ref.rays);
+      EXPECT_EQ(counters.rays, 3 * ref.rays.size()) << label;
     } else {
       trace_all(isect, ref.rays, closest, occluded);
+      packets = trace_packets(isect, ref.rays);
     }
   });
+  auto same_hit = [](const Hit& x, const Hit& y) {
+    return x.prim == y.prim && std::bit_cast<std::uint32_t>(x.t) == std::bit_cast<std::uint32_t>(y.t);
+  };
   int bad = 0;
   for (std::size_t i = 0; i < ref.rays.size(); ++i) {
-    const bool same = closest[i].prim == ref.closest[i].prim &&
-                      std::bit_cast<std::uint32_t>(closest[i].t) ==
-                          std::bit_cast<std::uint32_t>(ref.closest[i].t) &&
+    const bool same = same_hit(closest[i], ref.closest[i]) && same_hit(packets[i], ref.closest[i]) &&
                       occluded[i] == ref.occluded[i];
     if (!same && ++bad <= 3)
       ADD_FAILURE() << label << (counting ? " (counting)" : "") << " ray " << i << " "
                     << describe(ref.rays[i]) << ": prim " << closest[i].prim << " t "
-                    << closest[i].t << " occluded " << occluded[i] << ", naive prim "
+                    << closest[i].t << " occluded " << occluded[i] << ", in a packet prim "
+                    << packets[i].prim << " t " << packets[i].t << ", naive prim "
                     << ref.closest[i].prim << " t " << ref.closest[i].t << " occluded "
                     << ref.occluded[i];
   }

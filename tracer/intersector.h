@@ -11,7 +11,10 @@
 
 #include "accel/accel.h"
 
+#include <algorithm>
+#include <cstddef>
 #include <cstdint>
+#include <span>
 #include <variant>
 #include <vector>
 
@@ -50,17 +53,35 @@ class Intersector {
   /// Nearest hit in (ray.tmin, ray.tmax). Ties in t go to the lower id, so every structure
   /// reports the same primitive whatever order it visits them in.
   Hit closest(Ray ray) const {
-    Hit hit;
-    for (std::uint32_t i = 0; i < geo_->planes.size(); ++i) {
-      const float t = intersect(geo_->planes[i], ray);
-      if (t < ray.tmax) {
-        ray.tmax = t;
-        hit = {t, Hit::kPlaneBit | i};
-      }
-    }
+    Hit hit = closest_plane(ray);
     ClosestLeaf leaf{geo_, &hit};
     structure_->template intersect<Count>(ray, leaf, counters_);
     return hit;
+  }
+
+  /// Rays closest() takes at once: a tile of camera rays.
+  static constexpr std::size_t kPacketMax = 16;
+
+  /// closest(rays[i]) into hits[i] for up to kPacketMax rays, bit for bit. A structure that
+  /// traverses packets (intersect_packet) takes them together; the others one at a time.
+  void closest_packet(std::span<const Ray> rays, std::span<Hit> hits) const {
+    Ray packet[kPacketMax];
+    const std::size_t n = std::min(rays.size(), kPacketMax);
+    for (std::size_t i = 0; i < n; ++i) {
+      packet[i] = rays[i];
+      hits[i] = closest_plane(packet[i]);
+    }
+    if constexpr (requires(PacketLeaf& leaf) {
+                    structure_->template intersect_packet<Count>(std::span<Ray>(packet, n), leaf, counters_);
+                  }) {
+      PacketLeaf leaf{geo_, hits.data()};
+      structure_->template intersect_packet<Count>(std::span<Ray>(packet, n), leaf, counters_);
+    } else {
+      for (std::size_t i = 0; i < n; ++i) {
+        ClosestLeaf leaf{geo_, &hits[i]};
+        structure_->template intersect<Count>(packet[i], leaf, counters_);
+      }
+    }
   }
 
   /// True when anything lies in (ray.tmin, ray.tmax).
@@ -99,6 +120,31 @@ class Intersector {
       return keep(id, t, r);
     }
   };
+
+  /// ClosestLeaf for the ray of each lane of a packet, writing hits[lane].
+  struct PacketLeaf {
+    const Geometry* geo;
+    Hit* hits;
+    bool operator()(std::size_t lane, std::uint32_t id, Ray& r) const { return ClosestLeaf{geo, hits + lane}(id, r); }
+    bool accept(std::size_t lane, std::uint32_t id, float t, Ray& r) const
+      requires kSpheresOnly
+    {
+      return ClosestLeaf{geo, hits + lane}.keep(id, t, r);
+    }
+  };
+
+  /// The nearest unbounded plane in the ray's interval, which shortens ray.tmax to it.
+  Hit closest_plane(Ray& ray) const {
+    Hit hit;
+    for (std::uint32_t i = 0; i < geo_->planes.size(); ++i) {
+      const float t = intersect(geo_->planes[i], ray);
+      if (t < ray.tmax) {
+        ray.tmax = t;
+        hit = {t, Hit::kPlaneBit | i};
+      }
+    }
+    return hit;
+  }
 
   /// Any hit: anything before tmax.
   struct AnyLeaf {

@@ -12,11 +12,13 @@
 #include "accel/interval_slack.h"
 #include "accel/knob_table.h"
 #include "accel/leaf_loop.h"
+#include "accel/ray_packet.h"
 #include "accel/ray_setup.h"
 #include "accel/simd.h"
 #include "accel/sphere_soa.h"
 #include "accel/stats.h"
 
+#include <algorithm>
 #include <bit>
 #include <chrono>
 #include <cmath>
@@ -96,8 +98,8 @@ class WideBvh {
   void intersect(Ray& ray, LeafFn&& leaf_fn, TraversalCounters* counters = nullptr) const {
     if constexpr (Count) counters->rays++;
     if (nodes_.empty()) return;
-    const RaySetup rs(ray);
-    closest<Count>(ray, NodeRay(rs), leaf_fn, counters);
+    SingleQuery<Count, std::remove_reference_t<LeafFn>> q{*this, ray, NodeRay(RaySetup(ray)), leaf_fn, counters};
+    closest<Count>(q, counters);
   }
 
   /// Any hit: true at the first primitive whose leaf_fn returns true. No ordering: a node's
@@ -109,6 +111,35 @@ class WideBvh {
     Ray ray = ray_in;
     const RaySetup rs(ray);
     return any_hit<Count>(ray, NodeRay(rs), leaf_fn, counters);
+  }
+
+  /// Closest hit for a packet of rays (coherent rays: a tile of camera rays), each ray getting
+  /// the hit intersect() gives it. Groups of up to simd::FloatPacket::size rays whose
+  /// directions share their signs go down the tree as one frustum: per axis the range of their
+  /// origins and inverse directions bounds every ray's slab distances (IEEE rounding is
+  /// monotone), so a child is entered when the bounds say any ray may enter it, and leaf spheres
+  /// are tested against every ray of the group in one SIMD step. Other groups go ray by ray.
+  /// leaf_fn(lane, id, ray) and leaf_fn.accept(lane, id, t, ray) take the ray's index in `rays`.
+  template <bool Count = false, class LeafFn>
+  void intersect_packet(std::span<Ray> rays, LeafFn&& leaf_fn, TraversalCounters* counters = nullptr) const {
+    using L = std::remove_reference_t<LeafFn>;
+    for (std::size_t base = 0; base < rays.size(); base += kPacket) {
+      const std::span<Ray> group = rays.subspan(base, std::min(kPacket, rays.size() - base));
+      if constexpr (Count) counters->rays += group.size();
+      if (nodes_.empty()) continue;
+      const RayPacket<PacketBatch> packet(group);
+      PacketFrustum frustum;
+      if (frustum.bound(packet)) {
+        PacketQuery<Count, L> q{*this, group, packet, frustum, base, leaf_fn, counters};
+        closest<Count>(q, counters);
+        continue;
+      }
+      for (std::size_t i = 0; i < group.size(); ++i) {
+        LaneLeaf<L> lane{&leaf_fn, base + i};
+        SingleQuery<Count, LaneLeaf<L>> q{*this, group[i], NodeRay(RaySetup(group[i])), lane, counters};
+        closest<Count>(q, counters);
+      }
+    }
   }
 
   const Params& params() const { return params_; }
@@ -169,22 +200,153 @@ class WideBvh {
     float t;              ///< Entry distance, checked against the (shorter) t_hi when popped.
   };
 
+  /// One ray's closest-hit query: the single-ray box test, the leaf loop, its tmax.
   template <bool Count, class LeafFn>
-  void closest(Ray& ray, const NodeRay& r, LeafFn& leaf_fn, TraversalCounters* counters) const {
-    const float t_lo = widen_down(ray.tmin);
-    float t_hi = widen_up(ray.tmax);
+  struct SingleQuery {
+    const WideBvh& bvh;
+    Ray& ray;
+    NodeRay r;
+    LeafFn& leaf_fn;
+    TraversalCounters* counters;
+    bool hit = false;
+
+    std::uint64_t rays() const { return 1; }
+    float t_lo() const { return widen_down(ray.tmin); }
+    float t_hi() const { return widen_up(ray.tmax); }
+    std::uint32_t enter(const Node& n, float lo, float hi, float* tn) const { return WideBvh::enter(n, r, lo, hi, tn); }
+    void leaf(std::uint32_t first, std::uint32_t count) {
+      test_leaf<Count, false>(bvh.prim_ids_.data(), bvh.spheres_, first, count, ray, leaf_fn, counters, hit);
+    }
+  };
+
+  using PacketBatch = simd::FloatPacket;
+  static constexpr std::size_t kPacket = PacketBatch::size;
+
+  /// A packet leaf function seen as a single-ray one for the ray of one lane.
+  template <class LeafFn>
+  struct LaneLeaf {
+    LeafFn* leaf_fn;
+    std::size_t lane;
+    bool operator()(std::uint32_t id, Ray& ray) const { return (*leaf_fn)(lane, id, ray); }
+    bool accept(std::uint32_t id, float t, Ray& ray) const
+      requires AcceptingPacketLeafFn<LeafFn>
+    {
+      return leaf_fn->accept(lane, id, t, ray);
+    }
+  };
+
+  /// A group of rays bounded as a frustum: per axis the range of the origins and of the inverse
+  /// directions (near and far, as NodeRay scales them), and the plane row all rays take as near.
+  struct PacketFrustum {
+    float org_lo[3], org_hi[3];
+    float inv_lo[3], inv_hi[3];  ///< Range of RaySetup::inv_dir.
+    float far_lo[3], far_hi[3];  ///< Range of inv_dir * kSlabFarScale.
+    int near_row[3];
+
+    /// Bounds the rays of `p`; false when some axis has directions of both signs or a zero
+    /// component (an infinite inverse), where the ranges would bound nothing useful or make NaNs.
+    /// Lanes past the packet's rays repeat its first ray, so every lane is bounded.
+    bool bound(const RayPacket<PacketBatch>& p) {
+      constexpr std::uint32_t all = (1u << kPacket) - 1u;
+      for (int a = 0; a < 3; ++a) {
+        const std::uint32_t negs = simd::mask_bits<PacketBatch>(p.neg[a]);
+        if (negs != 0 && negs != all) return false;
+        if (simd::mask_bits<PacketBatch>(xsimd::abs(p.inv_far[a]) < PacketBatch(kInfinity)) != all) return false;
+        near_row[a] = 2 * a + (negs != 0 ? 1 : 0);
+        org_lo[a] = simd::reduce_min(p.org[a]);
+        org_hi[a] = simd::reduce_max(p.org[a]);
+        inv_lo[a] = simd::reduce_min(p.inv_dir[a]);
+        inv_hi[a] = simd::reduce_max(p.inv_dir[a]);
+        far_lo[a] = simd::reduce_min(p.inv_far[a]);
+        far_hi[a] = simd::reduce_max(p.inv_far[a]);
+      }
+      return true;
+    }
+  };
+
+  /// The frustum's entry into the children of `n` within [t_lo, t_hi]: bit i set when some ray
+  /// of the group may enter child i, tn[i] a lower bound of their entry distances. Each ray's
+  /// near slab distance (p - o) * inv in enter() lies between the products at the corners of
+  /// the ranges of p - o and inv, rounding included (rounding to nearest is monotone), and its
+  /// far distance likewise; so a child that some ray enters in enter() is entered here.
+  static std::uint32_t enter_frustum(const Node& n, const PacketFrustum& f, float t_lo, float t_hi, float* tn) {
+    std::uint32_t bits = 0;
+    for (int s = 0; s < kSteps; ++s) {
+      const int o = s * int(Batch::size);
+      Batch t0(t_lo), t1(t_hi);
+      for (int a = 0; a < 3; ++a) {
+        const Batch o_lo(f.org_lo[a]), o_hi(f.org_hi[a]);
+        const Batch pn = Batch::load_aligned(n.planes[f.near_row[a]] + o);
+        const Batch pf = Batch::load_aligned(n.planes[f.near_row[a] ^ 1] + o);
+        const Batch n0 = pn - o_hi, n1 = pn - o_lo, i0(f.inv_lo[a]), i1(f.inv_hi[a]);
+        const Batch t_near = xsimd::min(xsimd::min(n0 * i0, n0 * i1), xsimd::min(n1 * i0, n1 * i1));
+        const Batch f0 = pf - o_hi, f1 = pf - o_lo, j0(f.far_lo[a]), j1(f.far_hi[a]);
+        const Batch t_far = xsimd::max(xsimd::max(f0 * j0, f0 * j1), xsimd::max(f1 * j0, f1 * j1));
+        t0 = xsimd::select(t_near > t0, t_near, t0);
+        t1 = xsimd::select(t_far < t1, t_far, t1);
+      }
+      t0.store_unaligned(tn + o);
+      bits |= simd::mask_bits<Batch>(t0 <= t1) << o;
+    }
+    return bits;
+  }
+
+  /// A group of rays' closest-hit query through its frustum: the interval is the union of the
+  /// rays' intervals, and a leaf tests every ray of the group.
+  template <bool Count, class LeafFn>
+  struct PacketQuery {
+    const WideBvh& bvh;
+    std::span<Ray> group;
+    const RayPacket<PacketBatch>& packet;
+    const PacketFrustum& frustum;
+    std::size_t lane_base;
+    LeafFn& leaf_fn;
+    TraversalCounters* counters;
+
+    std::uint64_t rays() const { return group.size(); }
+    float t_lo() const { return simd::reduce_min(packet.t_lo); }
+    float t_hi() const {
+      float hi = -kInfinity;
+      for (const Ray& r : group) hi = std::max(hi, widen_up(r.tmax));
+      return hi;
+    }
+    std::uint32_t enter(const Node& n, float lo, float hi, float* tn) const {
+      return enter_frustum(n, frustum, lo, hi, tn);
+    }
+    void leaf(std::uint32_t first, std::uint32_t count) {
+      if constexpr (AcceptingPacketLeafFn<LeafFn>) {
+        if (!bvh.spheres_.empty()) {
+          bvh.spheres_.template test_packet<Count>(bvh.prim_ids_.data(), first, count, packet.valid, packet, group,
+                                                   lane_base, leaf_fn, counters);
+          return;
+        }
+      }
+      for (std::uint32_t j = first; j < first + count; ++j)
+        for (std::size_t i = 0; i < group.size(); ++i) {
+          if constexpr (Count) counters->prims_tested++;
+          leaf_fn(lane_base + i, bvh.prim_ids_[j], group[i]);
+        }
+    }
+  };
+
+  /// The closest-hit walk, for one ray or a frustum of rays (Query): children front to back by
+  /// entry distance, the nearest taken, the rest pushed farthest first with their distance;
+  /// popped entries starting beyond the current t_hi are skipped; leaves tested when taken.
+  template <bool Count, class Query>
+  void closest(Query& q, TraversalCounters* counters) const {
+    const float t_lo = q.t_lo();
+    float t_hi = q.t_hi();
     Entry stack[kStackSize];
     int sp = 0;
-    bool hit = false;
     std::uint32_t node = 0;
     alignas(64) float tn[W];
     for (;;) {
       if constexpr (Count) {
-        counters->nodes_visited++;
-        counters->boxes_tested += W;
+        counters->nodes_visited += q.rays();
+        counters->boxes_tested += W * q.rays();
       }
       const Node& n = nodes_[node];
-      std::uint32_t bits = enter(n, r, t_lo, t_hi, tn);
+      std::uint32_t bits = q.enter(n, t_lo, t_hi, tn);
       if (bits) {
         // Push every entered child but the nearest, farthest first; then take the nearest. A
         // leaf taken is tested at once.
@@ -210,8 +372,8 @@ class WideBvh {
           node = near.child;
           continue;
         }
-        test_leaf<Count, false>(prim_ids_.data(), spheres_, near.child, near.count, ray, leaf_fn, counters, hit);
-        t_hi = widen_up(ray.tmax);
+        q.leaf(near.child, near.count);
+        t_hi = q.t_hi();
       }
       // Pop the nearest pending child that still starts before the current hit; leaves are
       // tested as they come off the stack.
@@ -223,8 +385,8 @@ class WideBvh {
           node = e.child;
           break;
         }
-        test_leaf<Count, false>(prim_ids_.data(), spheres_, e.child, e.count, ray, leaf_fn, counters, hit);
-        t_hi = widen_up(ray.tmax);
+        q.leaf(e.child, e.count);
+        t_hi = q.t_hi();
       }
     }
   }
