@@ -10,8 +10,10 @@
 #include "render.h"
 
 #include <chrono>
+#include <concepts>
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <type_traits>
 #include <vector>
 
@@ -76,6 +78,66 @@ struct TracerScalar<Tracer, std::void_t<typename Tracer::Scalar>> {
   using type = typename Tracer::Scalar;
 };
 
+/// A tracer whose camera rays can be found as packets: it shades a camera ray from a hit found
+/// elsewhere (trace_eye_hit), its intersector answers packets (closest_packet) and counts no
+/// traversal (counting renders keep the single-ray statistics), and it keeps no per-pixel state.
+template <class Tracer>
+concept PacketCameraTracer =
+    requires(const Tracer& t, const Ray& ray, const Hit& hit, RayCounts& counts, std::span<const Ray> rays,
+             std::span<Hit> hits) {
+      { t.trace_eye_hit(ray, hit, counts) } -> std::same_as<Color>;
+      t.intersector().closest_packet(rays, hits);
+      requires !std::decay_t<decltype(t.intersector())>::kCounting;
+    } && !requires(const Tracer& t) { t.begin_pixel(0, 0); };
+
+/// Side of the square block of film samples whose camera rays go as one packet.
+inline constexpr int kPacketSide = 4;
+
+/// trace_tile for a PacketCameraTracer: the camera rays of each 4x4 block of film samples (one
+/// sample index at a time) are intersected as one packet, then shaded one by one. Each ray gets
+/// the hit it would get alone, and each sample sums in the same order, so the image is the
+/// single-ray loop's to the bit.
+template <class Camera, class Tracer>
+void trace_tile_packets(const Frame& f, const Camera& camera, int gx0, int gy0, int gx1, int gy1,
+                        const Tracer& tracer, RayCounts& rays, std::vector<Color>& grid) {
+  constexpr int kLanes = kPacketSide * kPacketSide;
+  const float inv_spp = 1.0f / float(f.spp);
+  const bool corners = f.film == FilmSampling::PixelCorners;
+  for (int by = gy0; by < gy1; by += kPacketSide)
+    for (int bx = gx0; bx < gx1; bx += kPacketSide) {
+      int gxs[kLanes], gys[kLanes], n = 0;
+      for (int gy = by; gy < std::min(by + kPacketSide, gy1); ++gy)
+        for (int gx = bx; gx < std::min(bx + kPacketSide, gx1); ++gx) {
+          gxs[n] = gx;
+          gys[n++] = gy;
+        }
+      Color sum[kLanes];
+      for (int i = 0; i < n; ++i) sum[i] = Color(0.0f);
+      for (int s = 0; s < (corners ? 1 : f.spp); ++s) {
+        Ray packet[kLanes];
+        Hit hits[kLanes];
+        for (int i = 0; i < n; ++i) {
+          const int x = f.window.x0 + gxs[i], y = f.window.y0 + gys[i];
+          float jx = 0.5f, jy = 0.5f;
+          if (!corners) sample_offset(x, y, s, f.spp, jx, jy, f.seed);
+          packet[i] = corners ? camera.ray_through(float(x), float(y)) : camera.primary_ray(x, y, jx, jy);
+        }
+        tracer.intersector().closest_packet(std::span<const Ray>(packet, std::size_t(n)),
+                                            std::span<Hit>(hits, std::size_t(n)));
+        for (int i = 0; i < n; ++i) {
+          const Color c = tracer.trace_eye_hit(packet[i], hits[i], rays);
+          if (corners)
+            sum[i] = c;
+          else
+            sum[i] += c;
+        }
+      }
+      for (int i = 0; i < n; ++i)
+        grid[std::size_t(gys[i]) * std::size_t(f.grid_w) + std::size_t(gxs[i])] =
+            corners || f.spp == 1 ? sum[i] : sum[i] * inv_spp;
+    }
+}
+
 /// Traces the film samples of one tile into `grid`, with camera rays from `camera` (a
 /// PinholeCameraT of the tracer's scalar type).
 template <class Camera, class Tracer>
@@ -83,6 +145,10 @@ void trace_tile(const Frame& f, const Camera& camera, int tile, const Tracer& tr
                 RayCounts& rays, std::vector<Color>& grid) {
   const int gx0 = (tile % f.tiles_x) * kTileSize, gy0 = (tile / f.tiles_x) * kTileSize;
   const int gx1 = std::min(gx0 + kTileSize, f.grid_w), gy1 = std::min(gy0 + kTileSize, f.grid_h);
+  if constexpr (PacketCameraTracer<Tracer>) {
+    trace_tile_packets(f, camera, gx0, gy0, gx1, gy1, tracer, rays, grid);
+    return;
+  }
   const float inv_spp = 1.0f / float(f.spp);
   for (int gy = gy0; gy < gy1; ++gy)
     for (int gx = gx0; gx < gx1; ++gx) {

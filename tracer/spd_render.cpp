@@ -28,18 +28,24 @@ class SpdTracer {
         intensity_(spd_light_intensity(scene.lights.size())) {}
 
   /// Colour along an eye ray (tree depth 1); counts it, and whether it hit.
-  Color trace_eye(const R& ray, RayCounts& counts) const {
+  Color trace_eye(const R& ray, RayCounts& counts) const { return trace_eye_hit(ray, isect_.closest(ray), counts); }
+
+  /// trace_eye for a camera ray whose closest hit the caller has already found (a packet of
+  /// camera rays, render_frame.h).
+  Color trace_eye_hit(const R& ray, const HitT<Scalar>& hit, RayCounts& counts) const {
     counts.eye++;
-    bool hit = false;
-    const Color color = trace(ray, 1, counts, &hit);
-    if (hit) counts.eye_hits++;
-    return color;
+    if (hit.found()) counts.eye_hits++;
+    return shade(ray, hit, 1, counts);
   }
 
-  /// Colour along `ray` at tree depth `depth`; sets *hit to whether it met a primitive.
-  Color trace(const R& ray, int depth, RayCounts& counts, bool* hit_out = nullptr) const {
-    const auto hit = isect_.closest(ray);
-    if (hit_out) *hit_out = hit.found();
+  /// The intersector every ray of this tracer goes through.
+  const Isect& intersector() const { return isect_; }
+
+  /// Colour along `ray` at tree depth `depth`.
+  Color trace(const R& ray, int depth, RayCounts& counts) const { return shade(ray, isect_.closest(ray), depth, counts); }
+
+  /// trace() from the ray's closest hit on.
+  Color shade(const R& ray, const HitT<Scalar>& hit, int depth, RayCounts& counts) const {
     if (!hit.found()) return scene_->background;
 
     const Geometry& geo = isect_.geometry();

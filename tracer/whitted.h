@@ -96,13 +96,26 @@ class Whitted {
     return trace(ray, 1, Color(1.0f), Color(0.0f), counts);
   }
 
+  /// trace_eye for a camera ray whose closest hit `hit` the caller has already found (a packet
+  /// of camera rays, render_frame.h): the same radiance, the same counts.
+  Color trace_eye_hit(const R& ray, const HitT<Scalar>& hit, RayCounts& counts) const {
+    counts.eye++;
+    return shade(ray, hit, 1, Color(1.0f), Color(0.0f), counts, 0);
+  }
+
   /// Radiance along `ray` at recursion depth `depth` (camera ray = 1). `throughput` is the
   /// path's weight before this ray and `absorption` the Beer coefficient of the medium it
   /// travels in; `gathers` counts the diffuse bounces sampled before it (PathState). Geometry is
   /// computed in Scalar, colours in float.
   Color trace(const R& ray, int depth, const Color& throughput, const Color& absorption,
               RayCounts& counts, int gathers = 0) const {
-    const auto hit = isect_.closest(ray);
+    return shade(ray, isect_.closest(ray), depth, throughput, absorption, counts, gathers);
+  }
+
+ private:
+  /// trace() from the ray's closest hit on.
+  Color shade(const R& ray, const HitT<Scalar>& hit, int depth, const Color& throughput,
+              const Color& absorption, RayCounts& counts, int gathers) const {
     if (!hit.found())
       return beer_transmittance(absorption, accel::kInfinity) *
              shading_.escaped(*scene_, PathState{depth, throughput, absorption, gathers});
@@ -162,6 +175,7 @@ class Whitted {
     return attenuation * radiance;
   }
 
+ public:
   /// Traces a secondary ray of direction `dir` from the surface point sp, leaving on the side of
   /// `side` (a unit geometric normal), when the depth and weight limits allow; counts it.
   Color spawn(const Point& sp, const V& side, const V& dir, int depth, const Color& weight,
