@@ -11,6 +11,7 @@
 #include "accel/geometry.h"
 #include "accel/interval_slack.h"
 #include "accel/knob_table.h"
+#include "accel/leaf_boxes.h"
 #include "accel/leaf_loop.h"
 #include "accel/ray_packet.h"
 #include "accel/ray_setup.h"
@@ -88,6 +89,7 @@ class WideBvh {
                                   " primitives");
     const auto start = std::chrono::steady_clock::now();
     spheres_.build(prim_ids_, spheres);
+    leaf_boxes_.clear();  // sphere leaves test the spheres themselves
     stats_.memory_bytes = memory_bytes();
     stats_.build_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   }
@@ -215,7 +217,7 @@ class WideBvh {
     float t_hi() const { return widen_up(ray.tmax); }
     std::uint32_t enter(const Node& n, float lo, float hi, float* tn) const { return WideBvh::enter(n, r, lo, hi, tn); }
     void leaf(std::uint32_t first, std::uint32_t count) {
-      test_leaf<Count, false>(bvh.prim_ids_.data(), bvh.spheres_, first, count, ray, leaf_fn, counters, hit);
+      bvh.template leaf_loop<Count, false>(ray, r, first, count, leaf_fn, counters, hit);
     }
   };
 
@@ -321,11 +323,19 @@ class WideBvh {
           return;
         }
       }
-      for (std::uint32_t j = first; j < first + count; ++j)
-        for (std::size_t i = 0; i < group.size(); ++i) {
+      // Each primitive's box against every ray (the rays' current t_hi), then the leaf function
+      // for the rays that may enter it.
+      alignas(64) float hi[kPacket];
+      for (std::size_t i = 0; i < kPacket; ++i) hi[i] = widen_up(group[i < group.size() ? i : 0].tmax);
+      const PacketBatch t_hi = PacketBatch::load_aligned(hi);
+      for (std::uint32_t j = first; j < first + count; ++j) {
+        std::uint32_t lanes = bvh.leaf_boxes_.empty() ? packet.valid : bvh.leaf_boxes_.enter_packet(j, packet, t_hi);
+        for (; lanes; lanes &= lanes - 1u) {
+          const std::size_t i = std::size_t(std::countr_zero(lanes));
           if constexpr (Count) counters->prims_tested++;
           leaf_fn(lane_base + i, bvh.prim_ids_[j], group[i]);
         }
+      }
     }
   };
 
@@ -412,8 +422,7 @@ class WideBvh {
         bits &= bits - 1u;
         if (n.count[i] == 0) {
           stack[sp++] = n.child[i];
-        } else if (test_leaf<Count, true>(prim_ids_.data(), spheres_, n.child[i], n.count[i], ray, leaf_fn,
-                                          counters, hit)) {
+        } else if (leaf_loop<Count, true>(ray, r, n.child[i], n.count[i], leaf_fn, counters, hit)) {
           return true;
         }
       }
@@ -424,13 +433,41 @@ class WideBvh {
 
   void build(std::span<const Aabb> boxes, std::uint64_t budget_bytes);
   std::uint64_t memory_bytes() const {
-    return nodes_.size() * sizeof(Node) + prim_ids_.size() * sizeof(std::uint32_t) + spheres_.memory_bytes();
+    return nodes_.size() * sizeof(Node) + prim_ids_.size() * sizeof(std::uint32_t) + spheres_.memory_bytes() +
+           leaf_boxes_.memory_bytes();
+  }
+
+  /// The leaf loop of one ray: SIMD sphere leaves where the spheres are attached and leaf_fn
+  /// takes a t; else the primitives' own boxes first, several at a time, and leaf_fn for the
+  /// primitives whose box the ray may enter, in id order.
+  template <bool Count, bool AnyHit, class LeafFn>
+  bool leaf_loop(Ray& ray, const NodeRay& r, std::uint32_t first, std::uint32_t count, LeafFn& leaf_fn,
+                 TraversalCounters* counters, bool& hit) const {
+    const bool sphere_leaves = AcceptingLeafFn<LeafFn> && !spheres_.empty();
+    if (sphere_leaves || leaf_boxes_.empty())
+      return test_leaf<Count, AnyHit>(prim_ids_.data(), spheres_, first, count, ray, leaf_fn, counters, hit);
+    // tmax only shortens within the leaf, so the interval taken at its start stays conservative.
+    const float lo = widen_down(ray.tmin), hi = widen_up(ray.tmax);
+    for (std::uint32_t j = first; j < first + count; j += LeafBoxes::kLanes) {
+      const std::uint32_t lanes = std::min(LeafBoxes::kLanes, first + count - j);
+      std::uint32_t bits = leaf_boxes_.enter(j, r.org, r.inv_dir, r.inv_far, r.near_row, lo, hi) &
+                           (lanes >= 32 ? ~0u : (1u << lanes) - 1u);
+      for (; bits; bits &= bits - 1u) {
+        if constexpr (Count) counters->prims_tested++;
+        if (leaf_fn(prim_ids_[j + std::uint32_t(std::countr_zero(bits))], ray)) {
+          if constexpr (AnyHit) return true;
+          hit = true;
+        }
+      }
+    }
+    return false;
   }
 
   Params params_;
   std::vector<Node, CacheLineAllocator<Node>> nodes_;
   std::vector<std::uint32_t> prim_ids_;
   SphereSoA spheres_;
+  LeafBoxes leaf_boxes_;  ///< The primitives' boxes in leaf order; cleared when spheres are attached.
   BuildStats stats_;
 };
 

@@ -188,7 +188,9 @@ void WideBvh<W>::build(std::span<const Aabb> boxes, std::uint64_t budget_bytes) 
   const std::uint64_t n = boxes.size();
   // Every inner node has at least two children, so there are fewer inner nodes than
   // primitives; the builder also holds one centroid per primitive while it runs.
-  const std::uint64_t bytes = std::max<std::uint64_t>(n, 1) * sizeof(Node) + n * (sizeof(std::uint32_t) + sizeof(Vec3));
+  // The primitives' padded boxes in leaf order take 6 floats each.
+  const std::uint64_t bytes = std::max<std::uint64_t>(n, 1) * sizeof(Node) +
+                              n * (sizeof(std::uint32_t) + sizeof(Vec3) + 6 * sizeof(float));
   if (bytes > budget_bytes)
     throw ConfigError(std::string(kName) + ": " + std::to_string(n) + " primitives need up to " + std::to_string(bytes) +
                       " bytes, over the memory budget of " + std::to_string(budget_bytes) +
@@ -197,6 +199,7 @@ void WideBvh<W>::build(std::span<const Aabb> boxes, std::uint64_t budget_bytes) 
   prim_ids_.resize(n);
   std::iota(prim_ids_.begin(), prim_ids_.end(), 0u);
   spheres_ = {};
+  leaf_boxes_.clear();
   stats_ = {};
   stats_.primitives = n;
   stats_.prim_refs = n;
@@ -207,6 +210,7 @@ void WideBvh<W>::build(std::span<const Aabb> boxes, std::uint64_t budget_bytes) 
     stats_.sah_cost = builder.root_area() > 0.0f ? builder.sah_sum() / double(builder.root_area()) : double(n);
   }
   nodes_.shrink_to_fit();
+  leaf_boxes_.build(prim_ids_, boxes);
   stats_.nodes = nodes_.size();
   stats_.mean_leaf_prims = stats_.leaves ? double(n) / double(stats_.leaves) : 0.0;
   stats_.memory_bytes = memory_bytes();
