@@ -11,6 +11,7 @@
 #include "leaf_loop.h"
 #include "placement.h"
 #include "ray_setup.h"
+#include "sphere_soa.h"
 #include "stats.h"
 
 #include <nlohmann/json.hpp>
@@ -132,6 +133,13 @@ class KdTree {
     return traverse<Count, true, true>(ray, leaf_fn, counters);
   }
 
+  /// Stores the spheres of a sphere-only scene (spheres[i] is primitive i) beside the id array,
+  /// so that leaves test them in SIMD for leaf functions that accept a precomputed t
+  /// (sphere_soa.h). The time it takes is added to stats().build_ms.
+  void attach_spheres(std::span<const SphereShape> spheres) {
+    attach_sphere_leaves(kName, prim_ids_, spheres, spheres_, stats_);
+  }
+
   const KdTreeParams& params() const { return params_; }
   const BuildStats& stats() const { return stats_; }
   /// The root cell: the union of the primitive boxes.
@@ -173,7 +181,7 @@ class KdTree {
       const KdNode n = nodes_[node];
       if constexpr (InnerPrims) {
         const KdPrimRange r = inner_prims_[node];
-        if (test_leaf<Count, AnyHit>(prim_ids_.data() + r.begin, r.count, ray, leaf_fn, counters, hit))
+        if (test_leaf<Count, AnyHit>(prim_ids_.data(), spheres_, r.begin, r.count, ray, leaf_fn, counters, hit))
           return true;
       }
       if (!n.is_leaf()) {
@@ -198,7 +206,7 @@ class KdTree {
         }
         continue;
       }
-      if (test_leaf<Count, AnyHit>(prim_ids_.data() + n.prim_begin(), n.prim_count(), ray, leaf_fn,
+      if (test_leaf<Count, AnyHit>(prim_ids_.data(), spheres_, n.prim_begin(), n.prim_count(), ray, leaf_fn,
                                    counters, hit))
         return true;
       // Next pending cell that starts before the current hit. A hit found beyond this leaf is
@@ -221,6 +229,7 @@ class KdTree {
   Aabb bounds_{Vec3(0.0f), Vec3(0.0f)};
   std::vector<KdNode> nodes_;
   std::vector<std::uint32_t> prim_ids_;
+  SphereSoA spheres_;  ///< The spheres of prim_ids_, when attached.
   std::vector<KdPrimRange> inner_prims_;
   BuildStats stats_;
 };

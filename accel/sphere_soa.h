@@ -13,10 +13,13 @@
 #include "stats.h"
 
 #include <algorithm>
+#include <chrono>
 #include <bit>
 #include <cstdint>
 #include <limits>
 #include <span>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace accel {
@@ -118,6 +121,22 @@ class SphereSoA {
  private:
   std::vector<float> cx_, cy_, cz_, r_;
 };
+
+/// A structure's attach_spheres: checks that `spheres` holds one sphere per primitive the
+/// structure was built over, fills `soa` for the structure's id array `ids` (duplicated
+/// references included), and adds the time it takes and the bytes it holds to `stats`.
+inline void attach_sphere_leaves(const char* structure, std::span<const std::uint32_t> ids,
+                                 std::span<const SphereShape> spheres, SphereSoA& soa, BuildStats& stats) {
+  if (spheres.size() != stats.primitives)
+    throw std::invalid_argument(std::string(structure) + ": " + std::to_string(spheres.size()) +
+                                " spheres attached to a structure over " + std::to_string(stats.primitives) +
+                                " primitives");
+  const auto start = std::chrono::steady_clock::now();
+  stats.memory_bytes -= soa.memory_bytes();
+  soa.build(ids, spheres);
+  stats.memory_bytes += soa.memory_bytes();
+  stats.build_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
 
 /// The leaf loop of a structure that may hold SphereSoA: ids[begin, begin + count) tested as
 /// spheres in SIMD when `spheres` is filled and leaf_fn accepts a precomputed t, else one

@@ -83,15 +83,9 @@ class WideBvh {
   /// that leaves test them in SIMD for leaf functions that accept a precomputed t.
   /// The time it takes is added to stats().build_ms.
   void attach_spheres(std::span<const SphereShape> spheres) {
-    if (spheres.size() != prim_ids_.size())
-      throw std::invalid_argument(std::string(kName) + ": " + std::to_string(spheres.size()) +
-                                  " spheres attached to a structure over " + std::to_string(prim_ids_.size()) +
-                                  " primitives");
-    const auto start = std::chrono::steady_clock::now();
-    spheres_.build(prim_ids_, spheres);
+    stats_.memory_bytes -= leaf_boxes_.memory_bytes();
     leaf_boxes_.clear();  // sphere leaves test the spheres themselves
-    stats_.memory_bytes = memory_bytes();
-    stats_.build_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    attach_sphere_leaves(kName, prim_ids_, spheres, spheres_, stats_);
   }
 
   /// Closest hit: children front to back by entry distance; leaf_fn may shorten ray.tmax, and a
