@@ -2,6 +2,7 @@
 // Bounding volume hierarchy: binned SAH build (bvh_builder.cpp), Wald's 32-byte node, ordered
 // traversal (nearer child first) with a small fixed stack.
 
+#include "cache_line_allocator.h"
 #include "geometry.h"
 #include "interval_slack.h"
 #include "knob_table.h"
@@ -52,20 +53,6 @@ struct BvhNode {
   bool is_leaf() const { return count != 0; }
 };
 static_assert(sizeof(BvhNode) == 32, "Wald's BVH node is 32 bytes");
-
-/// Hands out cache-line (64-byte) aligned storage, so that sibling nodes, which the builder
-/// places at an even index, share one cache line.
-template <class T>
-struct CacheLineAllocator {
-  using value_type = T;
-  static constexpr std::align_val_t kAlign{64};
-  CacheLineAllocator() = default;
-  template <class U>
-  CacheLineAllocator(const CacheLineAllocator<U>&) {}
-  T* allocate(std::size_t n) { return static_cast<T*>(::operator new(n * sizeof(T), kAlign)); }
-  void deallocate(T* p, std::size_t) { ::operator delete(p, kAlign); }
-  bool operator==(const CacheLineAllocator&) const = default;
-};
 
 class Bvh {
  public:

@@ -6,6 +6,7 @@
 // enter. Embree does the same with the primitive boxes of its user geometry. The box test is the
 // wide nodes' (same padding, same widened interval), so it never culls a primitive the ray hits.
 
+#include "cache_line_allocator.h"
 #include "geometry.h"
 #include "interval_slack.h"
 #include "ray_packet.h"
@@ -73,7 +74,7 @@ class LeafBoxes {
   }
 
  private:
-  std::vector<float> planes_[6];  ///< lo x, hi x, lo y, hi y, lo z, hi z.
+  std::vector<float, CacheLineAllocator<float>> planes_[6];  ///< lo x, hi x, lo y, hi y, lo z, hi z.
 };
 
 }  // namespace accel

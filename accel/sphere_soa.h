@@ -5,6 +5,7 @@
 // the same range here. Duplicated references (octree and kd-tree `leaves` placement) are
 // duplicated here too.
 
+#include "cache_line_allocator.h"
 #include "geometry.h"
 #include "leaf_loop.h"
 #include "ray_packet.h"
@@ -119,7 +120,7 @@ class SphereSoA {
   }
 
  private:
-  std::vector<float> cx_, cy_, cz_, r_;
+  std::vector<float, CacheLineAllocator<float>> cx_, cy_, cz_, r_;
 };
 
 /// A structure's attach_spheres: checks that `spheres` holds one sphere per primitive the
