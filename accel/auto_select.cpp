@@ -14,7 +14,7 @@ const KnobTable<AutoParams>& AutoParams::knobs() {
 }
 
 AutoChoice choose_structure(const AutoParams& params, std::size_t primitives) {
-  return primitives <= std::size_t(params.naive_max_prims) ? AutoChoice::Naive : AutoChoice::Bvh;
+  return primitives <= std::size_t(params.naive_max_prims) ? AutoChoice::Naive : AutoChoice::Tree;
 }
 
 AnyAccel AutoSelect::select(std::span<const Aabb> boxes, const AutoParams& params, const BuildLimits& limits) {
@@ -23,7 +23,7 @@ AnyAccel AutoSelect::select(std::span<const Aabb> boxes, const AutoParams& param
   if (choose_structure(params, boxes.size()) == AutoChoice::Naive)
     chosen = Naive(boxes, NaiveParams{}, limits);
   else
-    chosen = Bvh(boxes, BvhParams{}, limits);
+    chosen = Bvh8(boxes, Bvh8::Params{}, limits);
   chosen.selected_by = {{"structure", kName}, {"params", AutoParams::knobs().to_json(params)}};
   return chosen;
 }

@@ -117,9 +117,10 @@ TEST(AccelFactory, AutoPicksNaiveForFewPrimitivesAndSaysSo) {
   EXPECT_EQ(few.selected_by, p.at("selected_by"));
 
   const accel::AnyAccel many = accel::make_accel("auto", nullptr, row_of_boxes(1000));
-  EXPECT_EQ(accel::name_of(many), "bvh");
+  EXPECT_EQ(accel::name_of(many), "bvh8");
+  EXPECT_TRUE(std::holds_alternative<accel::Bvh8>(many));
   const json q = accel::params_of(many);
-  EXPECT_EQ(q.at("max_leaf_size"), accel::BvhParams{}.max_leaf_size);
+  EXPECT_EQ(q.at("max_leaf_size"), accel::Bvh8::Params{}.max_leaf_size);
   EXPECT_EQ(q.at("selected_by").at("structure"), "auto");
   EXPECT_GT(accel::stats_of(many).nodes, 1u);
 
