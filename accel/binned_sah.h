@@ -23,7 +23,8 @@ class BinnedSah {
 
   /// `bins` per axis; the split cost is traversal_cost + (A_L N_L + A_R N_R) / A.
   BinnedSah(std::span<const Aabb> boxes, int bins, float traversal_cost)
-      : boxes_(boxes), bins_(std::size_t(bins)), right_cost_(std::size_t(bins)), traversal_cost_(traversal_cost) {
+      : boxes_(boxes), right_cost_(std::size_t(bins)), traversal_cost_(traversal_cost) {
+    for (auto& b : axis_bins_) b.resize(std::size_t(bins));
     centroids_.resize(boxes.size());
     for (std::size_t i = 0; i < boxes.size(); ++i) centroids_[i] = boxes[i].center();
   }
@@ -41,31 +42,44 @@ class BinnedSah {
   /// half-area `area`; axis -1 when every centroid coincides.
   Split find(const std::uint32_t* ids, std::uint32_t begin, std::uint32_t end, const Aabb& centroids, float area) {
     Split best;
-    const int bins = int(bins_.size());
+    const int bins = int(axis_bins_[0].size());
     // A flat range (area 0) still splits spatially: its children cost nothing but the step.
     const float inv_area = area > 0.0f ? 1.0f / area : 0.0f;
+    // One pass bins every axis whose centroids spread (each primitive's centroid and box are
+    // read once, not once per axis); then each axis is swept on its own.
+    bool spread[3] = {};
+    Binner which[3] = {};
     for (int axis = 0; axis < 3; ++axis) {
-      if (!(centroids.hi[axis] > centroids.lo[axis])) continue;
-      std::fill(bins_.begin(), bins_.end(), Bin{});
-      const Binner which = binner(centroids, axis);
-      for (std::uint32_t i = begin; i < end; ++i) {
-        Bin& b = bins_[std::size_t(which(centroids_[ids[i]][axis]))];
-        b.box.grow(boxes_[ids[i]]);
+      spread[axis] = centroids.hi[axis] > centroids.lo[axis];
+      if (spread[axis]) which[axis] = binner(centroids, axis);
+      std::fill(axis_bins_[axis].begin(), axis_bins_[axis].end(), Bin{});
+    }
+    for (std::uint32_t i = begin; i < end; ++i) {
+      const Vec3& c = centroids_[ids[i]];
+      const Aabb& box = boxes_[ids[i]];
+      for (int axis = 0; axis < 3; ++axis) {
+        if (!spread[axis]) continue;
+        Bin& b = axis_bins_[axis][std::size_t(which[axis](c[axis]))];
+        b.box.grow(box);
         b.count++;
       }
+    }
+    for (int axis = 0; axis < 3; ++axis) {
+      if (!spread[axis]) continue;
+      const std::vector<Bin>& bins_of = axis_bins_[axis];
       // Sweep from the right storing the cost of every right part, then from the left.
       Aabb acc;
       std::uint32_t n = 0;
       for (int k = bins - 1; k > 0; --k) {
-        acc.grow(bins_[std::size_t(k)].box);
-        n += bins_[std::size_t(k)].count;
+        acc.grow(bins_of[std::size_t(k)].box);
+        n += bins_of[std::size_t(k)].count;
         right_cost_[std::size_t(k)] = n ? acc.half_area() * float(n) : 0.0f;
       }
       acc = Aabb{};
       n = 0;
       for (int k = 1; k < bins; ++k) {
-        acc.grow(bins_[std::size_t(k - 1)].box);
-        n += bins_[std::size_t(k - 1)].count;
+        acc.grow(bins_of[std::size_t(k - 1)].box);
+        n += bins_of[std::size_t(k - 1)].count;
         if (n == 0 || n == end - begin) continue;
         const float cost = traversal_cost_ + (acc.half_area() * float(n) + right_cost_[std::size_t(k)]) * inv_area;
         if (cost < best.cost) best = {axis, k, cost};
@@ -105,12 +119,13 @@ class BinnedSah {
 
   Binner binner(const Aabb& centroids, int axis) const {
     const float extent = centroids.hi[axis] - centroids.lo[axis];
-    return {centroids.lo[axis], float(bins_.size()) / extent, int(bins_.size()) - 1};
+    const std::size_t bins = axis_bins_[0].size();
+    return {centroids.lo[axis], float(bins) / extent, int(bins) - 1};
   }
 
   std::span<const Aabb> boxes_;
   std::vector<Vec3> centroids_;
-  std::vector<Bin> bins_;          ///< Scratch of find(), one axis at a time.
+  std::vector<Bin> axis_bins_[3];  ///< Scratch of find(): the bins of each axis.
   std::vector<float> right_cost_;  ///< Scratch of find(): SAH term of bins [k, bins).
   float traversal_cost_;
 };
