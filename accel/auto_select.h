@@ -23,8 +23,9 @@ class AnyAccel;
 /// 4, 1.47 at 8, 2.2 at 16, 5.4 at 64; on `five` (5 spheres filling the view) at 1024x768, 0.70.
 /// The crossover lies between 4 and 8 primitives and later for scenes that fill the view, so
 /// naive is kept up to 8. Above it `bvh8`: of every structure's whole renders (bench_trace
-/// Render/, spheres8000 and the ten SPD scenes, 2 December 2026) it was the fastest or within
-/// 5% of the fastest on each, where `bvh` took 1.15 to 1.6 times the fastest's time.
+/// Render/, spheres8000 and the ten SPD scenes, 2 December 2026) it was within 5% of the
+/// fastest on each in one run and within 6% on all but gears_sf4 (1.14) in a second, where `bvh`
+/// took 1.15 to 1.67 times the fastest's time (docs/structures.md).
 struct AutoParams {
   /// Scenes with at most this many primitives use naive; larger ones a bvh8 with default knobs.
   int naive_max_prims = 8;
