@@ -38,13 +38,15 @@ class Builder {
   void run() {
     nodes_.push_back({});  // the root
     nodes_.push_back({});  // unused: sibling pairs start at even indices, one cache line each
-    build_node(0, 0, std::uint32_t(ids_.size()), 0);
+    const auto n = std::uint32_t(ids_.size());
+    build_node(0, 0, n, 0, sah_.bounds(0, n));
+    sah_.copy_ids(ids_);
   }
 
  private:
-  void build_node(std::uint32_t index, std::uint32_t begin, std::uint32_t end, int depth) {
-    Aabb box, centroids;
-    sah_.bounds(ids_.data(), begin, end, box, centroids);
+  void build_node(std::uint32_t index, std::uint32_t begin, std::uint32_t end, int depth,
+                  const BinnedSah::Bounds& bounds) {
+    const Aabb& box = bounds.box;
     set_box(nodes_[index], box);
     stats_.max_depth_reached = std::max(stats_.max_depth_reached, depth);
     const std::uint32_t count = end - begin;
@@ -52,12 +54,13 @@ class Builder {
 
     if (count == 1 || depth >= params_.max_depth) return make_leaf(index, begin, count, area);
 
-    const BinnedSah::Split split = sah_.find(ids_.data(), begin, end, centroids, area);
+    const BinnedSah::Split split = sah_.find(begin, end, bounds.centroids, area);
     // Every centroid coinciding (no plane), the range is cut in half when a leaf would be too
     // big; otherwise the SAH decides between a leaf and the split.
     const bool small = count <= std::uint32_t(params_.max_leaf_size);
     if (small && (split.axis < 0 || float(count) <= split.cost)) return make_leaf(index, begin, count, area);
-    const std::uint32_t mid = sah_.partition(ids_.data(), begin, end, centroids, split);
+    BinnedSah::Bounds left_bounds, right_bounds;
+    const std::uint32_t mid = sah_.partition(begin, end, bounds.centroids, split, left_bounds, right_bounds);
 
     const auto left = std::uint32_t(nodes_.size());
     nodes_[index].first = left;
@@ -65,8 +68,8 @@ class Builder {
     nodes_.push_back({});
     nodes_.push_back({});
     stats_.sah_cost += kStatsTraversalCost * area;
-    build_node(left, begin, mid, depth + 1);
-    build_node(left + 1, mid, end, depth + 1);
+    build_node(left, begin, mid, depth + 1, left_bounds);
+    build_node(left + 1, mid, end, depth + 1, right_bounds);
   }
 
   void make_leaf(std::uint32_t index, std::uint32_t begin, std::uint32_t count, float area) {
@@ -101,7 +104,9 @@ void Bvh::build(std::span<const Aabb> boxes, std::uint64_t max_memory_bytes) {
   const auto start = std::chrono::steady_clock::now();
   const std::uint64_t n = boxes.size();
   const std::uint64_t node_bound = n ? 2 * n : 0;  // 2n - 1 nodes and the unused one
-  const std::uint64_t bytes = node_bound * sizeof(BvhNode) + n * sizeof(std::uint32_t);
+  // The builder also holds one reference per primitive while it runs.
+  const std::uint64_t bytes =
+      node_bound * sizeof(BvhNode) + n * (sizeof(std::uint32_t) + BinnedSah::kBytesPerPrimitive);
   if (bytes > max_memory_bytes)
     throw ConfigError("bvh: " + std::to_string(n) + " primitives need " + std::to_string(bytes) +
                       " bytes, over the memory budget of " + std::to_string(max_memory_bytes) +

@@ -50,8 +50,10 @@ class WideBuilder {
               std::vector<std::uint32_t>& ids, BuildStats& stats)
       : params_(params), nodes_(nodes), ids_(ids), stats_(stats), sah_(boxes, params.bins, params.traversal_cost) {}
 
+  /// Builds the nodes and leaves the primitive ids in leaf order.
   void run() {
-    const Range root = make_range(0, std::uint32_t(ids_.size()), 0);
+    const auto n = std::uint32_t(ids_.size());
+    const Range root = make_range(0, n, 0, sah_.bounds(0, n));
     root_area_ = root.area;
     nodes_.push_back({});
     if (root.leaf) {
@@ -61,6 +63,7 @@ class WideBuilder {
     } else {
       build_node(0, root, 0);
     }
+    sah_.copy_ids(ids_);
   }
 
   /// Sum of the SAH terms (traversal cost 1, intersection cost 1) before normalisation.
@@ -78,17 +81,18 @@ class WideBuilder {
     BinnedSah::Split split;
   };
 
-  Range make_range(std::uint32_t begin, std::uint32_t end, int depth) {
+  Range make_range(std::uint32_t begin, std::uint32_t end, int depth, const BinnedSah::Bounds& bounds) {
     Range r;
     r.begin = begin;
     r.end = end;
     r.depth = depth;
-    sah_.bounds(ids_.data(), begin, end, r.box, r.centroids);
+    r.box = bounds.box;
+    r.centroids = bounds.centroids;
     r.area = r.box.half_area();
     const std::uint32_t count = end - begin;
     stats_.max_depth_reached = std::max(stats_.max_depth_reached, depth);
     if (count <= 1 || depth >= params_.max_depth) return r;
-    r.split = sah_.find(ids_.data(), begin, end, r.centroids, r.area);
+    r.split = sah_.find(begin, end, r.centroids, r.area);
     const bool small = count <= std::uint32_t(params_.max_leaf_size);
     r.leaf = small && (r.split.axis < 0 || float(count) <= r.split.cost);
     return r;
@@ -96,9 +100,10 @@ class WideBuilder {
 
   /// Splits `r` (not a leaf) into its two halves, at r.depth.
   void split(const Range& r, Range& left, Range& right) {
-    const std::uint32_t mid = sah_.partition(ids_.data(), r.begin, r.end, r.centroids, r.split);
-    left = make_range(r.begin, mid, r.depth);
-    right = make_range(mid, r.end, r.depth);
+    BinnedSah::Bounds left_bounds, right_bounds;
+    const std::uint32_t mid = sah_.partition(r.begin, r.end, r.centroids, r.split, left_bounds, right_bounds);
+    left = make_range(r.begin, mid, r.depth, left_bounds);
+    right = make_range(mid, r.end, r.depth, right_bounds);
   }
 
   /// Fills node `index` (a range that is not a leaf, at `depth`) and its subtree.
@@ -187,10 +192,10 @@ void WideBvh<W>::build(std::span<const Aabb> boxes, std::uint64_t budget_bytes) 
   const auto start = std::chrono::steady_clock::now();
   const std::uint64_t n = boxes.size();
   // Every inner node has at least two children, so there are fewer inner nodes than
-  // primitives; the builder also holds one centroid per primitive while it runs.
+  // primitives; the builder also holds one reference per primitive while it runs.
   // The primitives' padded boxes in leaf order take 6 floats each.
   const std::uint64_t bytes = std::max<std::uint64_t>(n, 1) * sizeof(Node) +
-                              n * (sizeof(std::uint32_t) + sizeof(Vec3) + 6 * sizeof(float));
+                              n * (sizeof(std::uint32_t) + BinnedSah::kBytesPerPrimitive + 6 * sizeof(float));
   if (bytes > budget_bytes)
     throw ConfigError(std::string(kName) + ": " + std::to_string(n) + " primitives need up to " + std::to_string(bytes) +
                       " bytes, over the memory budget of " + std::to_string(budget_bytes) +
