@@ -51,24 +51,37 @@ inline std::uint32_t mask_bits(const typename Batch::batch_bool_type& m) {
   }
 }
 
+/// The smallest (Max false) or largest (Max true) lane of `b` (no NaN lanes): the two halves'
+/// lanes compared in one SIMD step, down to 4 lanes, then those 4 in turn.
+template <bool Max, class Batch>
+inline float reduce_lanes(const Batch& b) {
+  constexpr std::size_t n = Batch::size;
+  alignas(64) float lanes[n];
+  b.store_aligned(lanes);
+  if constexpr (n > 4) {
+    using Half = FloatN<int(n / 2)>;
+    const Half lo = Half::load_aligned(lanes), hi = Half::load_aligned(lanes + n / 2);
+    if constexpr (Max)
+      return reduce_lanes<Max>(xsimd::max(lo, hi));
+    else
+      return reduce_lanes<Max>(xsimd::min(lo, hi));
+  } else {
+    float m = lanes[0];
+    for (std::size_t i = 1; i < n; ++i) m = Max ? (lanes[i] > m ? lanes[i] : m) : (lanes[i] < m ? lanes[i] : m);
+    return m;
+  }
+}
+
 /// The smallest lane of `b` (no NaN lanes).
 template <class Batch>
 inline float reduce_min(const Batch& b) {
-  alignas(64) float lanes[Batch::size];
-  b.store_aligned(lanes);
-  float m = lanes[0];
-  for (std::size_t i = 1; i < Batch::size; ++i) m = lanes[i] < m ? lanes[i] : m;
-  return m;
+  return reduce_lanes<false>(b);
 }
 
 /// The largest lane of `b` (no NaN lanes).
 template <class Batch>
 inline float reduce_max(const Batch& b) {
-  alignas(64) float lanes[Batch::size];
-  b.store_aligned(lanes);
-  float m = lanes[0];
-  for (std::size_t i = 1; i < Batch::size; ++i) m = lanes[i] > m ? lanes[i] : m;
-  return m;
+  return reduce_lanes<true>(b);
 }
 
 /// Index of the lowest set bit of a non-zero mask.

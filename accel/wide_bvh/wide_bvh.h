@@ -238,6 +238,7 @@ class WideBvh {
     float inv_lo[3], inv_hi[3];  ///< Range of RaySetup::inv_dir.
     float far_lo[3], far_hi[3];  ///< Range of inv_dir * kSlabFarScale.
     int near_row[3];
+    bool one_origin;  ///< Every ray leaves from the same point (camera rays).
 
     /// Bounds the rays of `p`; false when some axis has directions of both signs or a zero
     /// component (an infinite inverse), where the ranges would bound nothing useful or make NaNs.
@@ -253,9 +254,12 @@ class WideBvh {
         org_hi[a] = simd::reduce_max(p.org[a]);
         inv_lo[a] = simd::reduce_min(p.inv_dir[a]);
         inv_hi[a] = simd::reduce_max(p.inv_dir[a]);
-        far_lo[a] = simd::reduce_min(p.inv_far[a]);
-        far_hi[a] = simd::reduce_max(p.inv_far[a]);
+        // Rounding is monotone and the scale positive, so the range of the scaled lanes is the
+        // scaled range, to the bit.
+        far_lo[a] = inv_lo[a] * kSlabFarScale;
+        far_hi[a] = inv_hi[a] * kSlabFarScale;
       }
+      one_origin = org_lo[0] == org_hi[0] && org_lo[1] == org_hi[1] && org_lo[2] == org_hi[2];
       return true;
     }
   };
@@ -264,7 +268,9 @@ class WideBvh {
   /// of the group may enter child i, tn[i] a lower bound of their entry distances. Each ray's
   /// near slab distance (p - o) * inv in enter() lies between the products at the corners of
   /// the ranges of p - o and inv, rounding included (rounding to nearest is monotone), and its
-  /// far distance likewise; so a child that some ray enters in enter() is entered here.
+  /// far distance likewise; so a child that some ray enters in enter() is entered here. With
+  /// one origin (OneOrigin) the two differences are one and half the products are the same.
+  template <bool OneOrigin>
   static std::uint32_t enter_frustum(const Node& n, const PacketFrustum& f, float t_lo, float t_hi, float* tn) {
     std::uint32_t bits = 0;
     for (int s = 0; s < kSteps; ++s) {
@@ -274,10 +280,17 @@ class WideBvh {
         const Batch o_lo(f.org_lo[a]), o_hi(f.org_hi[a]);
         const Batch pn = Batch::load_aligned(n.planes[f.near_row[a]] + o);
         const Batch pf = Batch::load_aligned(n.planes[f.near_row[a] ^ 1] + o);
-        const Batch n0 = pn - o_hi, n1 = pn - o_lo, i0(f.inv_lo[a]), i1(f.inv_hi[a]);
-        const Batch t_near = xsimd::min(xsimd::min(n0 * i0, n0 * i1), xsimd::min(n1 * i0, n1 * i1));
-        const Batch f0 = pf - o_hi, f1 = pf - o_lo, j0(f.far_lo[a]), j1(f.far_hi[a]);
-        const Batch t_far = xsimd::max(xsimd::max(f0 * j0, f0 * j1), xsimd::max(f1 * j0, f1 * j1));
+        const Batch i0(f.inv_lo[a]), i1(f.inv_hi[a]), j0(f.far_lo[a]), j1(f.far_hi[a]);
+        Batch t_near, t_far;
+        if constexpr (OneOrigin) {
+          const Batch n0 = pn - o_lo, f0 = pf - o_lo;
+          t_near = xsimd::min(n0 * i0, n0 * i1);
+          t_far = xsimd::max(f0 * j0, f0 * j1);
+        } else {
+          const Batch n0 = pn - o_hi, n1 = pn - o_lo, f0 = pf - o_hi, f1 = pf - o_lo;
+          t_near = xsimd::min(xsimd::min(n0 * i0, n0 * i1), xsimd::min(n1 * i0, n1 * i1));
+          t_far = xsimd::max(xsimd::max(f0 * j0, f0 * j1), xsimd::max(f1 * j0, f1 * j1));
+        }
         t0 = xsimd::select(t_near > t0, t_near, t0);
         t1 = xsimd::select(t_far < t1, t_far, t1);
       }
@@ -307,7 +320,8 @@ class WideBvh {
       return hi;
     }
     std::uint32_t enter(const Node& n, float lo, float hi, float* tn) const {
-      return enter_frustum(n, frustum, lo, hi, tn);
+      return frustum.one_origin ? enter_frustum<true>(n, frustum, lo, hi, tn)
+                                : enter_frustum<false>(n, frustum, lo, hi, tn);
     }
     void leaf(std::uint32_t first, std::uint32_t count) {
       if constexpr (AcceptingPacketLeafFn<LeafFn>) {
@@ -355,9 +369,19 @@ class WideBvh {
         // Push every entered child but the nearest, farthest first; then take the nearest. A
         // leaf taken is tested at once.
         Entry near{0, 0, kInfinity};
-        if (std::has_single_bit(bits)) {
-          const int i = std::countr_zero(bits);
-          near = {n.child[i], n.count[i], tn[i]};
+        const int first = std::countr_zero(bits);
+        const std::uint32_t rest = bits & (bits - 1u);
+        if (rest == 0) {
+          near = {n.child[first], n.count[first], tn[first]};
+        } else if (std::has_single_bit(rest)) {
+          // Two children, the common case: push the farther and take the nearer (the later
+          // one at a tie, as the sort below would).
+          const int second = std::countr_zero(rest);
+          const Entry a{n.child[first], n.count[first], tn[first]};
+          const Entry b{n.child[second], n.count[second], tn[second]};
+          const bool b_nearer = b.t <= a.t;
+          stack[sp++] = b_nearer ? a : b;
+          near = b_nearer ? b : a;
         } else {
           Entry hits[W];
           int k = 0;
