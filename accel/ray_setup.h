@@ -14,7 +14,8 @@ struct RaySetup {
   Vec3 inv_dir;   ///< 1 / dir per component; +-inf for a +-0 component.
   int neg[3];     ///< 1 where the direction component is negative (sign bit set, so -0 counts).
 
-  explicit RaySetup(const Ray& ray)
+  // Inlined: once per ray, and its divisions overlap the first node test only when inlined.
+  [[gnu::always_inline]] explicit RaySetup(const Ray& ray)
       : org(ray.org), inv_dir(1.0f / ray.dir.x, 1.0f / ray.dir.y, 1.0f / ray.dir.z) {
     neg[0] = std::signbit(ray.dir.x);
     neg[1] = std::signbit(ray.dir.y);

@@ -158,7 +158,7 @@ class WideBvh {
     float inv_dir[3];
     float inv_far[3];  ///< inv_dir * (1 + 2 gamma(3)) for far distances (Ize 2013).
     int near_row[3];   ///< planes row of the near plane on each axis (lo unless the ray goes down).
-    explicit NodeRay(const RaySetup& rs) {
+    [[gnu::always_inline]] explicit NodeRay(const RaySetup& rs) {
       for (int a = 0; a < 3; ++a) {
         org[a] = rs.org[a];
         inv_dir[a] = rs.inv_dir[a];
