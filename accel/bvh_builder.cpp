@@ -11,7 +11,6 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
-#include <numeric>
 #include <string>
 
 namespace accel {
@@ -113,8 +112,7 @@ void Bvh::build(std::span<const Aabb> boxes, std::uint64_t max_memory_bytes) {
                       " bytes (raise --max-memory)");
 
   nodes_.clear();
-  prim_ids_.resize(n);
-  std::iota(prim_ids_.begin(), prim_ids_.end(), 0u);
+  prim_ids_.resize(n);  // the builder writes them in leaf order (BinnedSah::copy_ids)
   stats_ = {};
   stats_.primitives = n;
   stats_.prim_refs = n;

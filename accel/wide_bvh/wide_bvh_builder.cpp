@@ -10,7 +10,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <numeric>
 #include <string>
 
 namespace accel {
@@ -201,8 +200,7 @@ void WideBvh<W>::build(std::span<const Aabb> boxes, std::uint64_t budget_bytes) 
                       " bytes, over the memory budget of " + std::to_string(budget_bytes) +
                       " bytes (raise --max-memory)");
   nodes_.clear();
-  prim_ids_.resize(n);
-  std::iota(prim_ids_.begin(), prim_ids_.end(), 0u);
+  prim_ids_.resize(n);  // the builder writes them in leaf order (BinnedSah::copy_ids)
   spheres_ = {};
   leaf_boxes_.clear();
   stats_ = {};
