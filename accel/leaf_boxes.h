@@ -45,8 +45,10 @@ class LeafBoxes {
   /// Bit i set when the ray may enter box at + i within [t_lo, t_hi] (i < kLanes): each lane
   /// performs the wide node test's operations. `near_row[a]` is the plane row nearest the ray
   /// on axis a (2 a, or 2 a + 1 when the ray goes down), `inv_far` = inv_dir * kSlabFarScale.
+  /// When `tn` is given, tn[i] receives lane i's entry distance (a lower bound of the distance
+  /// to anything in box at + i).
   std::uint32_t enter(std::uint32_t at, const float* org, const float* inv_dir, const float* inv_far,
-                      const int* near_row, float t_lo, float t_hi) const {
+                      const int* near_row, float t_lo, float t_hi, float* tn = nullptr) const {
     Batch t0(t_lo), t1(t_hi);
     for (int a = 0; a < 3; ++a) {
       const Batch o(org[a]);
@@ -55,13 +57,15 @@ class LeafBoxes {
       t0 = xsimd::select(t_near > t0, t_near, t0);
       t1 = xsimd::select(t_far < t1, t_far, t1);
     }
+    if (tn) t0.store_unaligned(tn);
     return simd::mask_bits<Batch>(t0 <= t1);
   }
 
   /// Bit i set when ray i of `p` may enter box j within [p.t_lo, t_hi], lane by lane the
-  /// single-ray test's operations.
+  /// single-ray test's operations. When `nearest` is given it receives the least entry distance
+  /// of the rays that may enter (+inf when none).
   template <class B>
-  std::uint32_t enter_packet(std::uint32_t j, const RayPacket<B>& p, const B& t_hi) const {
+  std::uint32_t enter_packet(std::uint32_t j, const RayPacket<B>& p, const B& t_hi, float* nearest = nullptr) const {
     B t0 = p.t_lo, t1 = t_hi;
     for (int a = 0; a < 3; ++a) {
       const B lo(planes_[2 * a][j]), hi(planes_[2 * a + 1][j]);
@@ -70,7 +74,10 @@ class LeafBoxes {
       t0 = xsimd::select(t_near > t0, t_near, t0);
       t1 = xsimd::select(t_far < t1, t_far, t1);
     }
-    return simd::mask_bits<B>(t0 <= t1) & p.valid;
+    const auto entered = t0 <= t1;
+    // Lanes past the packet's rays repeat its first ray, so they do not change the least.
+    if (nearest) *nearest = simd::reduce_min(xsimd::select(entered, t0, B(kInfinity)));
+    return simd::mask_bits<B>(entered) & p.valid;
   }
 
  private:

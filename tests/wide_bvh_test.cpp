@@ -1,6 +1,7 @@
 // The wide BVHs (accel/wide_bvh/): tree invariants over the knobs for 4 and 8 children, depth 0
-// as one leaf, the memory budget, and a million spheres built quickly and compactly. Equality
-// with naive on adversarial rays is the oracle test's job.
+// as one leaf, the memory budget, a million spheres built quickly and compactly, and closest-hit
+// leaves that test their nearest primitive first. Equality with naive on adversarial rays is the
+// oracle test's job.
 
 #include "accel/wide_bvh/wide_bvh.h"
 
@@ -135,6 +136,60 @@ TEST(WideBvh, MemoryBudgetErrorNamesTheKnob) {
     EXPECT_EQ(std::string(e.what()).rfind("bvh4: ", 0), 0u) << e.what();
   }
 }
+
+/// Four unit boxes in a row along +z in one leaf, the nearest to a ray going +z last in id
+/// order; the leaf function hits a box where the ray enters it.
+struct BoxRow {
+  std::vector<Aabb> boxes;
+  BoxRow() {
+    for (int i = 0; i < 4; ++i) {
+      const float z = 2.0f * float(3 - i);
+      boxes.push_back({Vec3(-1.0f, -1.0f, z), Vec3(1.0f, 1.0f, z + 1.0f)});
+    }
+  }
+  bool hit(std::uint32_t id, accel::Ray& r) const {
+    const float t = (boxes[id].lo.z - r.org.z) / r.dir.z;
+    if (t > r.tmin && t < r.tmax) {
+      r.tmax = t;
+      return true;
+    }
+    return false;
+  }
+};
+
+template <int W>
+void nearest_leaf_primitive_first() {
+  const BoxRow row;
+  accel::WideBvhParams<W> p;
+  p.max_depth = 0;  // one leaf
+  const accel::WideBvh<W> bvh(row.boxes, p);
+  accel::Ray ray;
+  ray.org = Vec3(0.25f, -0.5f, -10.0f);
+  ray.dir = Vec3(0.0f, 0.0f, 1.0f);
+  accel::TraversalCounters c;
+  bvh.template intersect<true>(ray, [&](std::uint32_t id, accel::Ray& r) { return row.hit(id, r); }, &c);
+  EXPECT_EQ(ray.tmax, 10.0f);  // box 3, at z = 0
+  // Taken in id order the leaf would test all four, each nearer than the last.
+  EXPECT_EQ(c.prims_tested, 1u);
+
+  std::vector<accel::Ray> rays(16, ray);
+  for (std::size_t i = 0; i < rays.size(); ++i) rays[i].org.x = -0.9f + 0.1f * float(i);
+  accel::TraversalCounters pc;
+  bvh.template intersect_packet<true>(
+      rays, [&](std::size_t, std::uint32_t id, accel::Ray& r) { return row.hit(id, r); }, &pc);
+  for (const accel::Ray& r : rays) EXPECT_EQ(r.tmax, 10.0f);
+  EXPECT_EQ(pc.prims_tested, rays.size());
+
+  // Any hit stops at the first primitive it tests, whichever.
+  accel::TraversalCounters ac;
+  accel::Ray shadow = ray;
+  shadow.tmax = accel::kInfinity;
+  EXPECT_TRUE(bvh.template occluded<true>(shadow, [&](std::uint32_t id, accel::Ray& r) { return row.hit(id, r); }, &ac));
+  EXPECT_EQ(ac.prims_tested, 1u);
+}
+
+TEST(WideBvh, ClosestHitTestsTheNearestLeafPrimitiveFirst4) { nearest_leaf_primitive_first<4>(); }
+TEST(WideBvh, ClosestHitTestsTheNearestLeafPrimitiveFirst8) { nearest_leaf_primitive_first<8>(); }
 
 TEST(WideBvh, AMillionSpheresBuildCompactly) {
   // The large-scene target: 10^6 random spheres, structure and sphere leaves together

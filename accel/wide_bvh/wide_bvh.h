@@ -332,16 +332,49 @@ class WideBvh {
         }
       }
       // Each primitive's box against every ray (the rays' current t_hi), then the leaf function
-      // for the rays that may enter it.
-      alignas(64) float hi[kPacket];
-      for (std::size_t i = 0; i < kPacket; ++i) hi[i] = widen_up(group[i < group.size() ? i : 0].tmax);
-      const PacketBatch t_hi = PacketBatch::load_aligned(hi);
-      for (std::uint32_t j = first; j < first + count; ++j) {
-        std::uint32_t lanes = bvh.leaf_boxes_.empty() ? packet.valid : bvh.leaf_boxes_.enter_packet(j, packet, t_hi);
+      // for the rays that may enter it. Leaves of up to kOrdered primitives take them in the
+      // order of the least entry distance into their boxes, and test each box against the rays'
+      // hits so far, so that a near hit spares the farther primitives behind it.
+      const auto hi_now = [&] {
+        alignas(64) float hi[kPacket];
+        for (std::size_t i = 0; i < kPacket; ++i) hi[i] = widen_up(group[i < group.size() ? i : 0].tmax);
+        return PacketBatch::load_aligned(hi);
+      };
+      const auto test = [&](std::uint32_t j, std::uint32_t lanes) {
+        bool kept = false;
         for (; lanes; lanes &= lanes - 1u) {
           const std::size_t i = std::size_t(std::countr_zero(lanes));
           if constexpr (Count) counters->prims_tested++;
-          leaf_fn(lane_base + i, bvh.prim_ids_[j], group[i]);
+          kept |= leaf_fn(lane_base + i, bvh.prim_ids_[j], group[i]);
+        }
+        return kept;
+      };
+      PacketBatch t_hi = hi_now();
+      if (bvh.leaf_boxes_.empty()) {
+        for (std::uint32_t j = first; j < first + count; ++j) test(j, packet.valid);
+        return;
+      }
+      constexpr std::uint32_t kOrdered = 16;
+      if (count > kOrdered) {
+        for (std::uint32_t j = first; j < first + count; ++j) test(j, bvh.leaf_boxes_.enter_packet(j, packet, t_hi));
+        return;
+      }
+      std::uint32_t order[kOrdered], lanes[kOrdered];
+      float key[kOrdered];
+      int k = 0;
+      for (std::uint32_t j = first; j < first + count; ++j) {
+        float near;
+        const std::uint32_t in = bvh.leaf_boxes_.enter_packet(j, packet, t_hi, &near);
+        if (!in) continue;
+        int at = k++;  // insertion sort, nearest first
+        for (; at > 0 && key[at - 1] > near; --at) key[at] = key[at - 1], order[at] = order[at - 1], lanes[at] = lanes[at - 1];
+        key[at] = near, order[at] = j, lanes[at] = in;
+      }
+      bool shortened = false;  // some ray's hit moved closer since the boxes were tested
+      for (int m = 0; m < k; ++m) {
+        if (test(order[m], shortened ? bvh.leaf_boxes_.enter_packet(order[m], packet, t_hi) : lanes[m])) {
+          t_hi = hi_now();
+          shortened = true;
         }
       }
     }
@@ -457,7 +490,10 @@ class WideBvh {
 
   /// The leaf loop of one ray: SIMD sphere leaves where the spheres are attached and leaf_fn
   /// takes a t; else the primitives' own boxes first, several at a time, and leaf_fn for the
-  /// primitives whose box the ray may enter, in id order.
+  /// primitives whose box the ray may enter: for any hit in leaf order, for the closest hit
+  /// nearest box first, stopping at the first box that starts beyond the hit found (as the
+  /// traversal skips a child entered beyond it). Which primitive wins does not depend on the
+  /// order: leaf_fn keeps the nearest, ties to the lower id.
   template <bool Count, bool AnyHit, class LeafFn>
   bool leaf_loop(Ray& ray, const NodeRay& r, std::uint32_t first, std::uint32_t count, LeafFn& leaf_fn,
                  TraversalCounters* counters, bool& hit) const {
@@ -468,13 +504,26 @@ class WideBvh {
     const float lo = widen_down(ray.tmin), hi = widen_up(ray.tmax);
     for (std::uint32_t j = first; j < first + count; j += LeafBoxes::kLanes) {
       const std::uint32_t lanes = std::min(LeafBoxes::kLanes, first + count - j);
-      std::uint32_t bits = leaf_boxes_.enter(j, r.org, r.inv_dir, r.inv_far, r.near_row, lo, hi) &
-                           (lanes >= 32 ? ~0u : (1u << lanes) - 1u);
-      for (; bits; bits &= bits - 1u) {
-        if constexpr (Count) counters->prims_tested++;
-        if (leaf_fn(prim_ids_[j + std::uint32_t(std::countr_zero(bits))], ray)) {
-          if constexpr (AnyHit) return true;
-          hit = true;
+      const std::uint32_t mask = lanes >= 32 ? ~0u : (1u << lanes) - 1u;
+      if constexpr (AnyHit) {
+        std::uint32_t bits = leaf_boxes_.enter(j, r.org, r.inv_dir, r.inv_far, r.near_row, lo, hi) & mask;
+        for (; bits; bits &= bits - 1u) {
+          if constexpr (Count) counters->prims_tested++;
+          if (leaf_fn(prim_ids_[j + std::uint32_t(std::countr_zero(bits))], ray)) return true;
+        }
+      } else {
+        float tn[LeafBoxes::kLanes];
+        std::uint32_t bits = leaf_boxes_.enter(j, r.org, r.inv_dir, r.inv_far, r.near_row, lo, hi, tn) & mask;
+        while (bits) {
+          int near = std::countr_zero(bits);
+          for (std::uint32_t rest = bits & (bits - 1u); rest; rest &= rest - 1u) {
+            const int i = std::countr_zero(rest);
+            if (tn[i] < tn[near]) near = i;
+          }
+          if (tn[near] > widen_up(ray.tmax)) break;  // every box left starts beyond the hit
+          bits &= ~(1u << near);
+          if constexpr (Count) counters->prims_tested++;
+          if (leaf_fn(prim_ids_[j + std::uint32_t(near)], ray)) hit = true;
         }
       }
     }
