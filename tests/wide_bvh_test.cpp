@@ -165,7 +165,8 @@ void nearest_leaf_primitive_first() {
   const accel::WideBvh<W> bvh(row.boxes, p);
   accel::Ray ray;
   ray.org = Vec3(0.25f, -0.5f, -10.0f);
-  ray.dir = Vec3(0.0f, 0.0f, 1.0f);
+  // No zero component: packets of these rays go down the tree together (as a frustum).
+  ray.dir = Vec3(1e-3f, 2e-3f, 1.0f);
   accel::TraversalCounters c;
   bvh.template intersect<true>(ray, [&](std::uint32_t id, accel::Ray& r) { return row.hit(id, r); }, &c);
   EXPECT_EQ(ray.tmax, 10.0f);  // box 3, at z = 0
@@ -173,7 +174,10 @@ void nearest_leaf_primitive_first() {
   EXPECT_EQ(c.prims_tested, 1u);
 
   std::vector<accel::Ray> rays(16, ray);
-  for (std::size_t i = 0; i < rays.size(); ++i) rays[i].org.x = -0.9f + 0.1f * float(i);
+  for (std::size_t i = 0; i < rays.size(); ++i) {
+    rays[i].org.x = -0.9f + 0.1f * float(i);
+    rays[i].tmax = accel::kInfinity;
+  }
   accel::TraversalCounters pc;
   bvh.template intersect_packet<true>(
       rays, [&](std::size_t, std::uint32_t id, accel::Ray& r) { return row.hit(id, r); }, &pc);
