@@ -55,8 +55,10 @@ struct Frame {
   std::uint64_t seed = 0;   ///< Seed of the sub-pixel jitter (PixelSamples).
 };
 
-/// Per-worker tallies, summed after the join (integer sums: order does not matter).
-struct ThreadTally {
+/// Per-worker tallies, summed after the join (integer sums: order does not matter). Each on its
+/// own cache lines: the workers bump their counts on every ray, and two tallies sharing a line
+/// would bounce it between the cores (false sharing).
+struct alignas(64) ThreadTally {
   RayCounts rays;
   accel::TraversalCounters traversal;
 };
