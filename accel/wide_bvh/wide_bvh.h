@@ -500,8 +500,10 @@ class WideBvh {
     const bool sphere_leaves = AcceptingLeafFn<LeafFn> && !spheres_.empty();
     if (sphere_leaves || leaf_boxes_.empty())
       return test_leaf<Count, AnyHit>(prim_ids_.data(), spheres_, first, count, ray, leaf_fn, counters, hit);
-    // tmax only shortens within the leaf, so the interval taken at its start stays conservative.
-    const float lo = widen_down(ray.tmin), hi = widen_up(ray.tmax);
+    // tmax only shortens within the leaf: hi, taken at its start, stays conservative; the
+    // closest hit narrows it after each hit (widened as the traversal widens it).
+    const float lo = widen_down(ray.tmin);
+    float hi = widen_up(ray.tmax);
     for (std::uint32_t j = first; j < first + count; j += LeafBoxes::kLanes) {
       const std::uint32_t lanes = std::min(LeafBoxes::kLanes, first + count - j);
       const std::uint32_t mask = lanes >= 32 ? ~0u : (1u << lanes) - 1u;
@@ -520,10 +522,13 @@ class WideBvh {
             const int i = std::countr_zero(rest);
             if (tn[i] < tn[near]) near = i;
           }
-          if (tn[near] > widen_up(ray.tmax)) break;  // every box left starts beyond the hit
+          if (tn[near] > hi) break;  // every box left starts beyond the hit
           bits &= ~(1u << near);
           if constexpr (Count) counters->prims_tested++;
-          if (leaf_fn(prim_ids_[j + std::uint32_t(near)], ray)) hit = true;
+          if (leaf_fn(prim_ids_[j + std::uint32_t(near)], ray)) {
+            hit = true;
+            hi = widen_up(ray.tmax);
+          }
         }
       }
     }
