@@ -171,6 +171,47 @@ class EmbreeAccel {
     return r.tfar == -kInfinity;
   }
 
+  /// Any hit for each of up to 32 rays through rtcOccluded16, 16 at a time, flagged coherent:
+  /// the peer of the wide BVHs' occluded_packet. Bit i of the result is set when rays[i] is
+  /// occluded; leaf_fn(lane, id, ray) takes the ray's index in `rays`.
+  template <bool Count = false, class LeafFn>
+  std::uint32_t occluded_packet(std::span<const Ray> rays_in, LeafFn&& leaf_fn,
+                                TraversalCounters* counters = nullptr) const {
+    constexpr std::size_t kLanes = 16;
+    std::uint32_t occluded = 0;
+    for (std::size_t base = 0; base < rays_in.size() && base < 32; base += kLanes) {
+      const std::size_t n = std::min(kLanes, rays_in.size() - base);
+      if constexpr (Count) counters->rays += n;
+      Ray rays[kLanes];
+      std::copy_n(rays_in.begin() + std::ptrdiff_t(base), n, rays);
+      Lane<LeafFn> lane_fn{&leaf_fn, base};
+      embree_detail::QueryContext q = context<Count, true>(rays[0], lane_fn, counters);
+      q.rtc.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+      alignas(64) int valid[kLanes];
+      alignas(64) RTCRay16 r;
+      for (std::size_t i = 0; i < kLanes; ++i) {
+        valid[i] = i < n ? -1 : 0;
+        const Ray& ray = rays[i < n ? i : 0];
+        r.org_x[i] = ray.org.x;
+        r.org_y[i] = ray.org.y;
+        r.org_z[i] = ray.org.z;
+        r.tnear[i] = widen_down(ray.tmin);
+        r.dir_x[i] = ray.dir.x;
+        r.dir_y[i] = ray.dir.y;
+        r.dir_z[i] = ray.dir.z;
+        r.time[i] = 0.0f;
+        r.tfar[i] = widen_up(ray.tmax);
+        r.mask[i] = 0xffffffffu;
+        r.id[i] = unsigned(i);
+        r.flags[i] = 0;
+      }
+      rtcOccluded16(valid, scene_.get(), &q.rtc, &r);
+      for (std::size_t i = 0; i < n; ++i)
+        if (r.tfar[i] == -kInfinity) occluded |= 1u << (base + i);
+    }
+    return occluded;
+  }
+
   const EmbreeParams& params() const { return params_; }
   const BuildStats& stats() const { return stats_; }
   /// Which statistics Embree cannot report.

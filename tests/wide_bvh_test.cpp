@@ -1,7 +1,7 @@
 // The wide BVHs (accel/wide_bvh/): tree invariants over the knobs for 4 and 8 children, depth 0
-// as one leaf, the memory budget, a million spheres built quickly and compactly, and closest-hit
-// leaves that test their nearest primitive first. Equality with naive on adversarial rays is the
-// oracle test's job.
+// as one leaf, the memory budget, a million spheres built quickly and compactly, closest-hit
+// leaves that test their nearest primitive first, and shadow-ray packets that walk each ray as
+// it would walk alone. Equality with naive on adversarial rays is the oracle test's job.
 
 #include "accel/wide_bvh/wide_bvh.h"
 
@@ -9,7 +9,9 @@
 
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <chrono>
+#include <cmath>
 #include <random>
 #include <vector>
 
@@ -194,6 +196,67 @@ void nearest_leaf_primitive_first() {
 
 TEST(WideBvh, ClosestHitTestsTheNearestLeafPrimitiveFirst4) { nearest_leaf_primitive_first<4>(); }
 TEST(WideBvh, ClosestHitTestsTheNearestLeafPrimitiveFirst8) { nearest_leaf_primitive_first<8>(); }
+
+/// Packets of shadow-like rays (random origins toward one point, t = 1 at it) and of random
+/// rays (some with zero direction components, some unbounded) over random boxes whose leaf
+/// function hits the sphere inside each box: occluded_packet must answer occluded() for each
+/// ray, and each ray must meet the nodes and primitives its own walk meets (so the counters of
+/// the packet equal the sum of the single rays').
+template <int W>
+void occluded_packet_walks_each_ray_as_alone() {
+  const std::vector<Aabb> boxes = random_boxes(2000, 7, 4.0f);
+  const accel::WideBvh<W> bvh(boxes);
+  const auto hit = [&](std::uint32_t id, const accel::Ray& r) {
+    const Vec3 c = (boxes[id].lo + boxes[id].hi) * 0.5f, oc = r.org - c;
+    const float radius = (boxes[id].hi.x - boxes[id].lo.x) * 0.5f;
+    const float a = glm::dot(r.dir, r.dir), b = glm::dot(oc, r.dir), k = glm::dot(oc, oc) - radius * radius;
+    const float disc = b * b - a * k;
+    if (disc < 0.0f) return false;
+    const float t0 = (-b - std::sqrt(disc)) / a, t1 = (-b + std::sqrt(disc)) / a;
+    return (t0 > r.tmin && t0 < r.tmax) || (t1 > r.tmin && t1 < r.tmax);
+  };
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> u(-5.0f, 5.0f);
+  std::uniform_int_distribution<int> pick(0, 7);
+  int occluded_rays = 0, open_rays = 0;
+  for (int packet = 0; packet < 200; ++packet) {
+    const bool shadow = packet % 2 == 0;
+    const Vec3 light(u(rng), u(rng), u(rng));
+    std::vector<accel::Ray> rays(packet % 7 == 0 ? 5 : 16);
+    for (accel::Ray& r : rays) {
+      r.org = Vec3(u(rng), u(rng), u(rng));
+      if (shadow) {
+        r.dir = light - r.org;
+        r.tmin = 1e-4f;
+        r.tmax = 1.0f;
+      } else {
+        r.dir = Vec3(u(rng), u(rng), u(rng));
+        if (pick(rng) == 0) r.dir[pick(rng) % 3] = 0.0f;
+        r.tmax = pick(rng) < 4 ? accel::kInfinity : 0.1f * float(pick(rng) + 1);
+      }
+    }
+    accel::TraversalCounters single, together;
+    std::uint32_t expected = 0;
+    for (std::size_t i = 0; i < rays.size(); ++i)
+      if (bvh.template occluded<true>(rays[i], [&](std::uint32_t id, accel::Ray& r) { return hit(id, r); }, &single))
+        expected |= 1u << i;
+    const std::uint32_t got = bvh.template occluded_packet<true>(
+        rays, [&](std::size_t, std::uint32_t id, accel::Ray& r) { return hit(id, r); }, &together);
+    ASSERT_EQ(got, expected) << "packet " << packet;
+    EXPECT_EQ(together.rays, single.rays) << "packet " << packet;
+    EXPECT_EQ(together.nodes_visited, single.nodes_visited) << "packet " << packet;
+    EXPECT_EQ(together.boxes_tested, single.boxes_tested) << "packet " << packet;
+    EXPECT_EQ(together.prims_tested, single.prims_tested) << "packet " << packet;
+    occluded_rays += std::popcount(expected);
+    open_rays += int(rays.size()) - std::popcount(expected);
+  }
+  // Both answers occur often enough to mean something.
+  EXPECT_GT(occluded_rays, 500);
+  EXPECT_GT(open_rays, 500);
+}
+
+TEST(WideBvh, OccludedPacketWalksEachRayAsAlone4) { occluded_packet_walks_each_ray_as_alone<4>(); }
+TEST(WideBvh, OccludedPacketWalksEachRayAsAlone8) { occluded_packet_walks_each_ray_as_alone<8>(); }
 
 TEST(WideBvh, AMillionSpheresBuildCompactly) {
   // The large-scene target: 10^6 random spheres, structure and sphere leaves together

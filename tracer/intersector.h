@@ -12,6 +12,7 @@
 #include "accel/accel.h"
 
 #include <algorithm>
+#include <bit>
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -86,10 +87,43 @@ class Intersector {
 
   /// True when anything lies in (ray.tmin, ray.tmax).
   bool occluded(const Ray& ray) const {
-    for (const Plane& pl : geo_->planes)
-      if (intersect(pl, ray) < ray.tmax) return true;
+    if (occluded_by_plane(ray)) return true;
     AnyLeaf leaf{geo_};
     return structure_->template occluded<Count>(ray, leaf, counters_);
+  }
+
+  /// occluded(rays[i]) in bit i, for up to kPacketMax rays (the shadow rays of a tile's camera
+  /// hits toward one light). A structure that traverses packets (occluded_packet) takes the
+  /// rays no plane occludes together; the others one at a time.
+  std::uint32_t occluded_packet(std::span<const Ray> rays) const {
+    const std::size_t n = std::min(rays.size(), kPacketMax);
+    std::uint32_t occluded = 0;
+    Ray open[kPacketMax];  // the rays no plane occludes, and their indices in `rays`
+    std::uint32_t index[kPacketMax];
+    std::size_t m = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (occluded_by_plane(rays[i])) {
+        occluded |= 1u << i;
+        continue;
+      }
+      open[m] = rays[i];
+      index[m++] = std::uint32_t(i);
+    }
+    if (m == 0) return occluded;
+    std::uint32_t bits = 0;
+    if constexpr (requires(PacketAnyLeaf& leaf) {
+                    structure_->template occluded_packet<Count>(std::span<const Ray>(open, m), leaf, counters_);
+                  }) {
+      PacketAnyLeaf leaf{geo_};
+      bits = structure_->template occluded_packet<Count>(std::span<const Ray>(open, m), leaf, counters_);
+    } else {
+      for (std::size_t k = 0; k < m; ++k) {
+        AnyLeaf leaf{geo_};
+        if (structure_->template occluded<Count>(open[k], leaf, counters_)) bits |= 1u << k;
+      }
+    }
+    for (; bits; bits &= bits - 1u) occluded |= 1u << index[std::countr_zero(bits)];
+    return occluded;
   }
 
   const Geometry& geometry() const { return *geo_; }
@@ -146,11 +180,29 @@ class Intersector {
     return hit;
   }
 
+  /// True when an unbounded plane lies in the ray's interval.
+  bool occluded_by_plane(const Ray& ray) const {
+    for (const Plane& pl : geo_->planes)
+      if (intersect(pl, ray) < ray.tmax) return true;
+    return false;
+  }
+
   /// Any hit: anything before tmax.
   struct AnyLeaf {
     const Geometry* geo;
     bool operator()(std::uint32_t id, Ray& r) const { return geo->template intersect_bounded<Kinds>(id, r) < r.tmax; }
     bool accept(std::uint32_t, float t, Ray& r) const
+      requires kSpheresOnly
+    {
+      return t < r.tmax;
+    }
+  };
+
+  /// AnyLeaf for the ray of any lane of a packet.
+  struct PacketAnyLeaf {
+    const Geometry* geo;
+    bool operator()(std::size_t, std::uint32_t id, Ray& r) const { return AnyLeaf{geo}(id, r); }
+    bool accept(std::size_t, std::uint32_t, float t, Ray& r) const
       requires kSpheresOnly
     {
       return t < r.tmax;

@@ -138,6 +138,35 @@ class WideBvh {
     }
   }
 
+  /// Any hit for a packet of up to 32 rays (the shadow rays of a tile's camera hits toward one
+  /// light): bit i of the result is set when rays[i] is occluded, as occluded(rays[i]) says.
+  /// Groups of up to simd::FloatPacket::size rays go down the tree together, unordered like
+  /// occluded() (any_hit_packet); trees with SIMD sphere leaves take the rays one by one.
+  template <bool Count = false, class LeafFn>
+  std::uint32_t occluded_packet(std::span<const Ray> rays, LeafFn&& leaf_fn, TraversalCounters* counters = nullptr) const {
+    using L = std::remove_reference_t<LeafFn>;
+    std::uint32_t occluded = 0;
+    for (std::size_t base = 0; base < rays.size() && base < 32; base += kPacket) {
+      const std::size_t n = std::min(kPacket, rays.size() - base);
+      if constexpr (Count) counters->rays += n;
+      if (nodes_.empty()) continue;
+      Ray group[kPacket];
+      std::copy_n(rays.begin() + std::ptrdiff_t(base), n, group);
+      std::uint32_t bits = 0;
+      const RayPacket<PacketBatch> packet(std::span<const Ray>(group, n));
+      if (spheres_.empty()) {
+        bits = any_hit_packet<Count>(std::span<Ray>(group, n), packet, base, leaf_fn, counters);
+      } else {
+        for (std::size_t i = 0; i < n; ++i) {
+          LaneLeaf<L> lane{&leaf_fn, base + i};
+          if (any_hit<Count>(group[i], NodeRay(RaySetup(group[i])), lane, counters)) bits |= 1u << i;
+        }
+      }
+      occluded |= bits << base;
+    }
+    return occluded;
+  }
+
   const Params& params() const { return params_; }
   const BuildStats& stats() const { return stats_; }
   /// The nodes, root first. Empty for zero primitives.
@@ -479,6 +508,72 @@ class WideBvh {
       }
       if (sp == 0) return false;
       node = stack[--sp];
+    }
+  }
+
+  /// The rays of `p` (lanes) that enter child `c` of `n` within [t_lo, t_hi] of each: lane by
+  /// lane the operations of enter() for that ray and that child, so the same rays enter.
+  static std::uint32_t enter_rays(const Node& n, int c, const RayPacket<PacketBatch>& p, const PacketBatch& t_hi) {
+    PacketBatch t0 = p.t_lo, t1 = t_hi;
+    for (int a = 0; a < 3; ++a) {
+      const PacketBatch lo(n.planes[2 * a][c]), hi(n.planes[2 * a + 1][c]);
+      const PacketBatch t_near = (xsimd::select(p.neg[a], hi, lo) - p.org[a]) * p.inv_dir[a];
+      const PacketBatch t_far = (xsimd::select(p.neg[a], lo, hi) - p.org[a]) * p.inv_far[a];
+      t0 = xsimd::select(t_near > t0, t_near, t0);
+      t1 = xsimd::select(t_far < t1, t_far, t1);
+    }
+    return simd::mask_bits<PacketBatch>(t0 <= t1) & p.valid;
+  }
+
+  /// any_hit for the rays of `packet` together: each node tests its children against every ray
+  /// still open (SIMD over the rays), and a child is taken with the rays that enter it, so each
+  /// ray meets the nodes and primitives its own walk would. Returns the rays some primitive
+  /// occludes; stops when every ray is.
+  template <bool Count, class LeafFn>
+  std::uint32_t any_hit_packet(std::span<Ray> group, const RayPacket<PacketBatch>& packet, std::size_t lane_base,
+                               LeafFn& leaf_fn, TraversalCounters* counters) const {
+    alignas(64) float hi[kPacket];
+    for (std::size_t i = 0; i < kPacket; ++i) hi[i] = widen_up(group[i < group.size() ? i : 0].tmax);
+    const PacketBatch t_hi = PacketBatch::load_aligned(hi);
+    struct Pending {
+      std::uint32_t node;
+      std::uint32_t lanes;  ///< The rays that entered it.
+    };
+    Pending stack[kStackSize];
+    int sp = 0;
+    std::uint32_t live = packet.valid;  // rays not yet occluded
+    Pending at{0, live};
+    for (;;) {
+      at.lanes &= live;
+      if (at.lanes) {
+        if constexpr (Count) {
+          counters->nodes_visited += std::uint64_t(std::popcount(at.lanes));
+          counters->boxes_tested += std::uint64_t(W) * std::uint64_t(std::popcount(at.lanes));
+        }
+        const Node& n = nodes_[at.node];
+        for (int c = 0; c < W; ++c) {
+          if (!(n.planes[0][c] <= n.planes[1][c])) continue;  // unused slot
+          const std::uint32_t in = enter_rays(n, c, packet, t_hi) & at.lanes;
+          if (!in) continue;
+          if (n.count[c] == 0) {
+            stack[sp++] = {n.child[c], in};
+            continue;
+          }
+          for (std::uint32_t j = n.child[c]; j < n.child[c] + n.count[c]; ++j) {
+            std::uint32_t lanes = in & live;
+            if (!leaf_boxes_.empty()) lanes &= leaf_boxes_.enter_packet(j, packet, t_hi);
+            for (; lanes; lanes &= lanes - 1u) {
+              const std::size_t i = std::size_t(std::countr_zero(lanes));
+              if constexpr (Count) counters->prims_tested++;
+              if (leaf_fn(lane_base + i, prim_ids_[j], group[i])) live &= ~(1u << i);
+            }
+          }
+          if (!live) return packet.valid;
+          at.lanes &= live;
+        }
+      }
+      if (sp == 0) return packet.valid & ~live;
+      at = stack[--sp];
     }
   }
 
