@@ -1,4 +1,5 @@
-// The render loop: image size, determinism at any thread count, and the camera's film mapping.
+// The render loop: image size, determinism at any thread count, the camera's film mapping, and
+// the SPD render's shadow-ray packets against single rays.
 
 #include "tracer/camera.h"
 #include "tracer/parallel.h"
@@ -19,7 +20,8 @@ namespace {
 using tracer::Vec3;
 
 tracer::RenderResult render_with(const tracer::Scene& scene, const std::string& name, int threads,
-                                 int w = 0, int h = 0, bool count = false) {
+                                 int w = 0, int h = 0, bool count = false,
+                                 const tracer::Integrator& integrator = tracer::whitted_integrator()) {
   const auto boxes = scene.geometry.primitive_bounds();
   const accel::AnyAccel accel = accel::make_accel(name, nlohmann::json::object(), boxes);
   tracer::RenderOptions options;
@@ -27,7 +29,7 @@ tracer::RenderResult render_with(const tracer::Scene& scene, const std::string& 
   options.width = w;
   options.height = h;
   options.count_traversal = count;
-  return tracer::render(scene, accel, options, tracer::whitted_integrator());
+  return tracer::render(scene, accel, options, integrator);
 }
 
 TEST(Render, BitIdenticalAtAnyThreadCountWithJitteredSamples) {
@@ -55,6 +57,23 @@ TEST(Render, CountingPassGivesTheSameImageAndCountsEveryQuery) {
   // Every closest-hit and any-hit query goes through the structure once.
   EXPECT_EQ(counted.traversal.rays, counted.rays.total());
   EXPECT_EQ(counted.traversal.prims_tested > 0, true);
+}
+
+// The SPD render shades each 4x4 packet of camera hits together and sends their shadow rays as
+// packets; the counting pass traces every ray alone. Both must give the same image and the same
+// ray counts, through structures with and without a packet any-hit traversal.
+TEST(Render, SpdShadowPacketsGiveTheSingleRayImage) {
+  scenes_gen::GenOptions gen;
+  for (const char* kind : {"refraction", "sphereflake"}) {
+    const tracer::Scene scene = scenes_gen::generate(kind, gen);
+    for (const char* accel : {"naive", "bvh4", "bvh8", "kdtree", "embree"}) {
+      const tracer::RenderResult packets = render_with(scene, accel, 2, 45, 33, false, tracer::spd_integrator());
+      const tracer::RenderResult single = render_with(scene, accel, 2, 45, 33, true, tracer::spd_integrator());
+      EXPECT_EQ(packets.image.content_hash(), single.image.content_hash()) << kind << " " << accel;
+      EXPECT_TRUE(packets.rays == single.rays) << kind << " " << accel;
+      EXPECT_GT(single.rays.shadow, 300u) << kind;
+    }
+  }
 }
 
 TEST(Render, RejectsBadOptions) {

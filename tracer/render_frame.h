@@ -96,9 +96,9 @@ concept PacketCameraTracer =
 inline constexpr int kPacketSide = 4;
 
 /// trace_tile for a PacketCameraTracer: the camera rays of each 4x4 block of film samples (one
-/// sample index at a time) are intersected as one packet, then shaded one by one. Each ray gets
-/// the hit it would get alone, and each sample sums in the same order, so the image is the
-/// single-ray loop's to the bit.
+/// sample index at a time) are intersected as one packet, then shaded one by one, or together
+/// by a tracer with trace_eye_packet. Each ray gets the hit it would get alone, and each sample
+/// sums in the same order, so the image is the single-ray loop's to the bit.
 template <class Camera, class Tracer>
 void trace_tile_packets(const Frame& f, const Camera& camera, int gx0, int gy0, int gx1, int gy1,
                         const Tracer& tracer, RayCounts& rays, std::vector<Color>& grid) {
@@ -126,12 +126,18 @@ void trace_tile_packets(const Frame& f, const Camera& camera, int gx0, int gy0, 
         }
         tracer.intersector().closest_packet(std::span<const Ray>(packet, std::size_t(n)),
                                             std::span<Hit>(hits, std::size_t(n)));
+        Color c[kLanes];
+        // A tracer that can also send its first shadow rays as packets shades the hits together.
+        if constexpr (requires { tracer.trace_eye_packet(std::span<const Ray>(), std::span<const Hit>(), rays, std::span<Color>()); })
+          tracer.trace_eye_packet(std::span<const Ray>(packet, std::size_t(n)), std::span<const Hit>(hits, std::size_t(n)),
+                                  rays, std::span<Color>(c, std::size_t(n)));
+        else
+          for (int i = 0; i < n; ++i) c[i] = tracer.trace_eye_hit(packet[i], hits[i], rays);
         for (int i = 0; i < n; ++i) {
-          const Color c = tracer.trace_eye_hit(packet[i], hits[i], rays);
           if (corners)
-            sum[i] = c;
+            sum[i] = c[i];
           else
-            sum[i] += c;
+            sum[i] += c[i];
         }
       }
       for (int i = 0; i < n; ++i)

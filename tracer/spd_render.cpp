@@ -7,6 +7,9 @@
 #include "render_frame.h"
 #include "surface.h"
 
+#include <algorithm>
+#include <cstdint>
+#include <span>
 #include <type_traits>
 #include <vector>
 
@@ -44,12 +47,70 @@ class SpdTracer {
   /// Colour along `ray` at tree depth `depth`.
   Color trace(const R& ray, int depth, RayCounts& counts) const { return shade(ray, isect_.closest(ray), depth, counts); }
 
+  /// trace_eye_hit for a packet of camera rays (up to 16) and their hits, into out[i]: the
+  /// shadow rays of all their hits toward one light go out as one packet (occluded_packet),
+  /// then each ray is shaded as shade() would, to the bit. Scenes of over 64 lights go ray by
+  /// ray.
+  void trace_eye_packet(std::span<const R> rays, std::span<const HitT<Scalar>> hits, RayCounts& counts,
+                        std::span<Color> out) const {
+    constexpr std::size_t kMax = 16;
+    const std::size_t n = std::min(rays.size(), kMax);
+    const std::vector<PointLight>& lights = scene_->lights;
+    if (lights.size() > 64) {
+      for (std::size_t i = 0; i < n; ++i) out[i] = trace_eye_hit(rays[i], hits[i], counts);
+      return;
+    }
+    Shading h[kMax];
+    std::uint64_t lit[kMax] = {};  // bit l: light l reaches the hit
+    for (std::size_t i = 0; i < n; ++i) {
+      counts.eye++;
+      if (!hits[i].found()) continue;
+      counts.eye_hits++;
+      h[i] = shading(rays[i], hits[i]);
+    }
+    for (std::size_t l = 0; l < lights.size(); ++l) {
+      R shadows[kMax];
+      std::size_t lane[kMax], m = 0;
+      for (std::size_t i = 0; i < n; ++i) {
+        if (!hits[i].found() || !faces(h[i], lights[l])) continue;
+        shadows[m] = shadow_ray(h[i], lights[l]);
+        lane[m++] = i;
+      }
+      if (m == 0) continue;
+      counts.shadow += m;
+      const std::uint32_t occluded = isect_.occluded_packet(std::span<const R>(shadows, m));
+      for (std::size_t k = 0; k < m; ++k)
+        if (!((occluded >> k) & 1u)) lit[lane[k]] |= std::uint64_t(1) << l;
+    }
+    for (std::size_t i = 0; i < n; ++i)
+      out[i] = hits[i].found() ? shade_lit(h[i], 1, counts, [&](std::size_t l) { return ((lit[i] >> l) & 1u) != 0; })
+                               : scene_->background;
+  }
+
   /// trace() from the ray's closest hit on.
   Color shade(const R& ray, const HitT<Scalar>& hit, int depth, RayCounts& counts) const {
     if (!hit.found()) return scene_->background;
+    const Shading h = shading(ray, hit);
+    return shade_lit(h, depth, counts, [&](std::size_t l) {
+      counts.shadow++;
+      return !isect_.occluded(shadow_ray(h, scene_->lights[l]));
+    });
+  }
 
+ private:
+  /// What shading a hit needs before any ray leaves it.
+  struct Shading {
+    SurfacePointT<Scalar> sp;
+    const NffSurface* s = nullptr;
+    V d, ng, ns;          ///< Unit ray direction; geometric and shading normals facing the ray.
+    bool entering = true;  ///< The ray enters the (transmitting) surface.
+  };
+
+  Shading shading(const R& ray, const HitT<Scalar>& hit) const {
     const Geometry& geo = isect_.geometry();
-    SurfacePointT<Scalar> sp = surface_point(geo, ray, hit);
+    Shading h;
+    SurfacePointT<Scalar>& sp = h.sp;
+    sp = surface_point(geo, ray, hit);
     // A sphere of negative radius shows its inside: its normal points inwards.
     if (!hit.is_plane() && geo.kind_of(hit.prim) == PrimitiveKind::Sphere &&
         geo.spheres[hit.prim].radius < 0.0f) {
@@ -59,27 +120,44 @@ class SpdTracer {
     // Vertex normals decide which side of a smooth triangle is its front.
     if (glm::dot(sp.n_geo, sp.n_shade) < Scalar(0)) sp.n_geo = -sp.n_geo;
 
-    const NffSurface& s = (*surfaces_)[sp.material];
-    const V d = glm::normalize(ray.dir);
-    const bool transmits = s.transmittance > 0.0f;
-    V ng = sp.n_geo, ns = sp.n_shade;
-    bool entering = true;
-    if (transmits && glm::dot(ng, d) > Scalar(0)) {  // two-sided: face the arriving ray
-      ng = -ng;
-      ns = -ns;
-      entering = false;
+    h.s = &(*surfaces_)[sp.material];
+    h.d = glm::normalize(ray.dir);
+    h.ng = sp.n_geo;
+    h.ns = sp.n_shade;
+    if (h.s->transmittance > 0.0f && glm::dot(h.ng, h.d) > Scalar(0)) {  // two-sided: face the arriving ray
+      h.ng = -h.ng;
+      h.ns = -h.ns;
+      h.entering = false;
     }
+    return h;
+  }
+
+  /// Whether the shading normal faces `light` (else no shadow ray is traced).
+  static bool faces(const Shading& h, const PointLight& light) {
+    return glm::dot(h.ns, V(light.position) - h.sp.p) > Scalar(0);
+  }
+
+  /// The shadow ray toward `light`: it leaves on the light's side; t = 1 just short of the light.
+  static R shadow_ray(const Shading& h, const PointLight& light) {
+    const V light_position(light.position);
+    const V to_light = light_position - h.sp.p;
+    return segment_to(offset_ray_origin(h.sp, glm::dot(h.ng, to_light) > Scalar(0) ? h.ng : -h.ng), light_position);
+  }
+
+  /// The colour of a hit at tree depth `depth`; visible(l) says whether light l, which the
+  /// normal faces, reaches it (and counts its shadow ray).
+  template <class Visible>
+  Color shade_lit(const Shading& h, int depth, RayCounts& counts, Visible&& visible) const {
+    const NffSurface& s = *h.s;
+    const SurfacePointT<Scalar>& sp = h.sp;
+    const V d = h.d, ng = h.ng, ns = h.ns;
+    const bool transmits = s.transmittance > 0.0f;
 
     Color color = nff_ambient(s, intensity_);
-    for (const PointLight& light : scene_->lights) {
-      const V light_position(light.position);
-      const V to_light = light_position - sp.p;
-      if (!(glm::dot(ns, to_light) > Scalar(0))) continue;  // normal faces away: no shadow ray
-      // Leaves on the light's side; t = 1 just short of the light.
-      const R shadow = segment_to(
-          offset_ray_origin(sp, glm::dot(ng, to_light) > Scalar(0) ? ng : -ng), light_position);
-      counts.shadow++;
-      if (isect_.occluded(shadow)) continue;
+    for (std::size_t l = 0; l < scene_->lights.size(); ++l) {
+      const PointLight& light = scene_->lights[l];
+      if (!faces(h, light) || !visible(l)) continue;
+      const V to_light = V(light.position) - sp.p;
       color += nff_direct(s, Vec3(ns), Vec3(-d), Vec3(glm::normalize(to_light)),
                           intensity_ * light.color);
     }
@@ -95,7 +173,7 @@ class SpdTracer {
       color += s.ks * rc;
     }
     if (transmits) {
-      const Scalar eta = entering ? Scalar(1) / Scalar(s.ior) : Scalar(s.ior);
+      const Scalar eta = h.entering ? Scalar(1) / Scalar(s.ior) : Scalar(s.ior);
       // refract() needs a normal against the ray; an interpolated one may not be.
       const V n_against = glm::dot(ns, d) < Scalar(0) ? ns : ng;
       V t;
@@ -110,7 +188,6 @@ class SpdTracer {
     return color;
   }
 
- private:
   const Scene* scene_;
   Isect isect_;
   const std::vector<NffSurface>* surfaces_;
