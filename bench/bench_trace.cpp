@@ -496,20 +496,29 @@ std::vector<Config> tree_configs() {
   return out;
 }
 
+/// Milliseconds, and beside Google Benchmark's mean, median and spread over the repetitions
+/// their minimum: on a host with slow spells of tens of seconds the median of a few
+/// repetitions flips with where the spells fall, while the minimum is the time outside them.
+benchmark::internal::Benchmark* timed_ms(benchmark::internal::Benchmark* b) {
+  return b->Unit(benchmark::kMillisecond)->ComputeStatistics("min", [](const std::vector<double>& v) {
+    return v.empty() ? 0.0 : *std::min_element(v.begin(), v.end());
+  });
+}
+
 void register_benchmarks() {
   for (const char* scene : {"spheres8000", "five"})
     for (RaySet set : {RaySet::Coherent, RaySet::Packets, RaySet::Incoherent})
       for (const Config& c : trace_configs()) {
         const std::string bm =
             std::string("Trace/") + scene + "/" + ray_set_name(set) + "/" + c.label;
-        benchmark::RegisterBenchmark(bm.c_str(), bm_trace, std::string(scene), set, c.name, c.knobs)
-            ->Unit(benchmark::kMillisecond);
+        timed_ms(benchmark::RegisterBenchmark(bm.c_str(), bm_trace, std::string(scene), set, c.name, c.knobs)
+            );
       }
   for (const char* scene : {"spheres8000", "five"})
     for (const Config& c : trace_configs()) {
       const std::string bm = std::string("Trace/") + scene + "/shadow/" + c.label;
-      benchmark::RegisterBenchmark(bm.c_str(), bm_trace, std::string(scene), RaySet::Shadow, c.name, c.knobs)
-          ->Unit(benchmark::kMillisecond);
+      timed_ms(benchmark::RegisterBenchmark(bm.c_str(), bm_trace, std::string(scene), RaySet::Shadow, c.name, c.knobs)
+          );
     }
   // Whole renders: spheres8000 (Whitted, 1024x768) and every SPD scene (256x256).
   std::vector<RenderCase> renders = {{"spheres8000", "", false, kWidth, kHeight}};
@@ -526,18 +535,18 @@ void register_benchmarks() {
     for (const Config& c : trace_configs()) {
       if (c.name == "naive") continue;  // hours per render
       const std::string bm = "Render/" + rc.label + "/" + c.label;
-      benchmark::RegisterBenchmark(bm.c_str(), bm_render, rc, c.name, c.knobs)
+      timed_ms(benchmark::RegisterBenchmark(bm.c_str(), bm_render, rc, c.name, c.knobs)
           ->UseManualTime()
           ->Iterations(rc.path.empty() ? 1 : 3)
-          ->Unit(benchmark::kMillisecond);
+          );
     }
   for (RaySet set : {RaySet::Coherent, RaySet::Packets})
     for (const Config& c : tree_configs()) {
       const std::string bm = std::string("TraceKnobs/spheres8000/") + ray_set_name(set) + "/" + c.label;
-      benchmark::RegisterBenchmark(bm.c_str(), bm_trace_knobs, set, c.name, c.knobs)
+      timed_ms(benchmark::RegisterBenchmark(bm.c_str(), bm_trace_knobs, set, c.name, c.knobs)
           ->ArgNames({"max_depth", "max_leaf_size"})
           ->ArgsProduct({{8, 16, 64}, {1, 2, 4, 8, 16}})
-          ->Unit(benchmark::kMillisecond);
+          );
     }
   // Build time at default knobs, every structure (Embree included), and on a million spheres.
   for (const char* scene : {"spheres8000", "random1M"})
@@ -545,16 +554,16 @@ void register_benchmarks() {
       if (std::string(scene) == "random1M" && c.name != "bvh" && c.name != "bvh4" && c.name != "bvh8" && c.name != "embree")
         continue;
       const std::string bm = std::string("BuildDefault/") + scene + "/" + c.label;
-      benchmark::RegisterBenchmark(bm.c_str(), bm_build_default, std::string(scene), c.name, c.knobs)
-          ->Unit(benchmark::kMillisecond);
+      timed_ms(benchmark::RegisterBenchmark(bm.c_str(), bm_build_default, std::string(scene), c.name, c.knobs)
+          );
     }
   // Build time over the tree knobs; the BVH's target is <= 5 ms at (64, 4) for spheres8000.
   for (const Config& c : tree_configs()) {
     const std::string bm = "Build/spheres8000/" + c.label;
-    benchmark::RegisterBenchmark(bm.c_str(), bm_build, std::string("spheres8000"), c.name, c.knobs)
+    timed_ms(benchmark::RegisterBenchmark(bm.c_str(), bm_build, std::string("spheres8000"), c.name, c.knobs)
         ->ArgNames({"max_depth", "max_leaf_size"})
         ->ArgsProduct({{8, 16, 20, 64}, {1, 2, 4, 8, 16}})
-        ->Unit(benchmark::kMillisecond);
+        );
   }
 }
 
