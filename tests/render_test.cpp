@@ -1,5 +1,5 @@
 // The render loop: image size, determinism at any thread count, the camera's film mapping, and
-// the SPD render's shadow-ray packets against single rays.
+// the SPD and Whitted renders' shadow-ray packets against single rays.
 
 #include "tracer/camera.h"
 #include "tracer/parallel.h"
@@ -59,21 +59,23 @@ TEST(Render, CountingPassGivesTheSameImageAndCountsEveryQuery) {
   EXPECT_EQ(counted.traversal.prims_tested > 0, true);
 }
 
-// The SPD render shades each 4x4 packet of camera hits together and sends their shadow rays as
-// packets; the counting pass traces every ray alone. Both must give the same image and the same
-// ray counts, through structures with and without a packet any-hit traversal.
-TEST(Render, SpdShadowPacketsGiveTheSingleRayImage) {
+// The SPD and Whitted renders shade each 4x4 packet of camera hits together and send their
+// shadow rays as packets; the counting pass traces every ray alone. Both must give the same image
+// and the same ray counts, through structures with and without a packet any-hit traversal, with
+// and without SIMD sphere leaves (sphereflake is spheres only).
+TEST(Render, ShadowPacketsGiveTheSingleRayImage) {
   scenes_gen::GenOptions gen;
-  for (const char* kind : {"refraction", "sphereflake"}) {
-    const tracer::Scene scene = scenes_gen::generate(kind, gen);
-    for (const char* accel : {"naive", "bvh4", "bvh8", "kdtree", "embree"}) {
-      const tracer::RenderResult packets = render_with(scene, accel, 2, 45, 33, false, tracer::spd_integrator());
-      const tracer::RenderResult single = render_with(scene, accel, 2, 45, 33, true, tracer::spd_integrator());
-      EXPECT_EQ(packets.image.content_hash(), single.image.content_hash()) << kind << " " << accel;
-      EXPECT_TRUE(packets.rays == single.rays) << kind << " " << accel;
-      EXPECT_GT(single.rays.shadow, 300u) << kind;
+  for (const tracer::Integrator* integrator : {&tracer::spd_integrator(), &tracer::whitted_integrator()})
+    for (const char* kind : {"refraction", "sphereflake"}) {
+      const tracer::Scene scene = scenes_gen::generate(kind, gen);
+      for (const char* accel : {"naive", "bvh4", "bvh8", "kdtree", "embree"}) {
+        const tracer::RenderResult packets = render_with(scene, accel, 2, 45, 33, false, *integrator);
+        const tracer::RenderResult single = render_with(scene, accel, 2, 45, 33, true, *integrator);
+        EXPECT_EQ(packets.image.content_hash(), single.image.content_hash()) << kind << " " << accel;
+        EXPECT_TRUE(packets.rays == single.rays) << kind << " " << accel;
+        EXPECT_GT(single.rays.shadow, 300u) << kind;
+      }
     }
-  }
 }
 
 TEST(Render, RejectsBadOptions) {
