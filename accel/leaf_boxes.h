@@ -66,14 +66,10 @@ class LeafBoxes {
   /// of the rays that may enter (+inf when none).
   template <class B>
   std::uint32_t enter_packet(std::uint32_t j, const RayPacket<B>& p, const B& t_hi, float* nearest = nullptr) const {
-    B t0 = p.t_lo, t1 = t_hi;
-    for (int a = 0; a < 3; ++a) {
-      const B lo(planes_[2 * a][j]), hi(planes_[2 * a + 1][j]);
-      const B t_near = (xsimd::select(p.neg[a], hi, lo) - p.org[a]) * p.inv_dir[a];
-      const B t_far = (xsimd::select(p.neg[a], lo, hi) - p.org[a]) * p.inv_far[a];
-      t0 = xsimd::select(t_near > t0, t_near, t0);
-      t1 = xsimd::select(t_far < t1, t_far, t1);
-    }
+    const float lo[3] = {planes_[0][j], planes_[2][j], planes_[4][j]};
+    const float hi[3] = {planes_[1][j], planes_[3][j], planes_[5][j]};
+    B t0, t1;
+    box_interval(p, lo, hi, t_hi, t0, t1);
     const auto entered = t0 <= t1;
     // Lanes past the packet's rays repeat its first ray, so they do not change the least.
     if (nearest) *nearest = simd::reduce_min(xsimd::select(entered, t0, B(kInfinity)));

@@ -66,4 +66,21 @@ struct RayPacket {
   }
 };
 
+/// The interval in which each ray of `p` crosses the box [lo, hi] (per axis), clipped to
+/// [p.t_lo, t_hi]: lane by lane the single-ray slab test's operations (the near plane by the
+/// direction's sign, far distances through inv_far). A lane's ray enters the box when t0 <= t1.
+template <class Batch>
+void box_interval(const RayPacket<Batch>& p, const float lo[3], const float hi[3], const Batch& t_hi, Batch& t0,
+                  Batch& t1) {
+  t0 = p.t_lo;
+  t1 = t_hi;
+  for (int a = 0; a < 3; ++a) {
+    const Batch l(lo[a]), h(hi[a]);
+    const Batch t_near = (xsimd::select(p.neg[a], h, l) - p.org[a]) * p.inv_dir[a];
+    const Batch t_far = (xsimd::select(p.neg[a], l, h) - p.org[a]) * p.inv_far[a];
+    t0 = xsimd::select(t_near > t0, t_near, t0);
+    t1 = xsimd::select(t_far < t1, t_far, t1);
+  }
+}
+
 }  // namespace accel

@@ -71,9 +71,12 @@ class SpdTracer {
     for (std::size_t l = 0; l < lights.size(); ++l) {
       R shadows[kMax];
       std::size_t lane[kMax], m = 0;
+      const V light_position(lights[l].position);
       for (std::size_t i = 0; i < n; ++i) {
-        if (!hits[i].found() || !faces(h[i], lights[l])) continue;
-        shadows[m] = shadow_ray(h[i], lights[l]);
+        if (!hits[i].found()) continue;
+        const V to_light = light_position - h[i].sp.p;
+        if (!faces(h[i], to_light)) continue;
+        shadows[m] = shadow_ray(h[i], light_position, to_light);
         lane[m++] = i;
       }
       if (m == 0) continue;
@@ -83,7 +86,7 @@ class SpdTracer {
         if (!((occluded >> k) & 1u)) lit[lane[k]] |= std::uint64_t(1) << l;
     }
     for (std::size_t i = 0; i < n; ++i)
-      out[i] = hits[i].found() ? shade_lit(h[i], 1, counts, [&](std::size_t l) { return ((lit[i] >> l) & 1u) != 0; })
+      out[i] = hits[i].found() ? shade_lit(h[i], 1, counts, [&](std::size_t l, const V&, const V&) { return ((lit[i] >> l) & 1u) != 0; })
                                : scene_->background;
   }
 
@@ -91,9 +94,9 @@ class SpdTracer {
   Color shade(const R& ray, const HitT<Scalar>& hit, int depth, RayCounts& counts) const {
     if (!hit.found()) return scene_->background;
     const Shading h = shading(ray, hit);
-    return shade_lit(h, depth, counts, [&](std::size_t l) {
+    return shade_lit(h, depth, counts, [&](std::size_t, const V& light_position, const V& to_light) {
       counts.shadow++;
-      return !isect_.occluded(shadow_ray(h, scene_->lights[l]));
+      return !isect_.occluded(shadow_ray(h, light_position, to_light));
     });
   }
 
@@ -132,20 +135,17 @@ class SpdTracer {
     return h;
   }
 
-  /// Whether the shading normal faces `light` (else no shadow ray is traced).
-  static bool faces(const Shading& h, const PointLight& light) {
-    return glm::dot(h.ns, V(light.position) - h.sp.p) > Scalar(0);
-  }
+  /// Whether the shading normal faces a light at `to_light` (= light - p; else no shadow ray).
+  static bool faces(const Shading& h, const V& to_light) { return glm::dot(h.ns, to_light) > Scalar(0); }
 
-  /// The shadow ray toward `light`: it leaves on the light's side; t = 1 just short of the light.
-  static R shadow_ray(const Shading& h, const PointLight& light) {
-    const V light_position(light.position);
-    const V to_light = light_position - h.sp.p;
+  /// The shadow ray toward the light at `light_position` (`to_light` from the point): it leaves
+  /// on the light's side; t = 1 just short of the light.
+  static R shadow_ray(const Shading& h, const V& light_position, const V& to_light) {
     return segment_to(offset_ray_origin(h.sp, glm::dot(h.ng, to_light) > Scalar(0) ? h.ng : -h.ng), light_position);
   }
 
-  /// The colour of a hit at tree depth `depth`; visible(l) says whether light l, which the
-  /// normal faces, reaches it (and counts its shadow ray).
+  /// The colour of a hit at tree depth `depth`; visible(l, light_position, to_light) says
+  /// whether light l, which the normal faces, reaches it (and counts its shadow ray).
   template <class Visible>
   Color shade_lit(const Shading& h, int depth, RayCounts& counts, Visible&& visible) const {
     const NffSurface& s = *h.s;
@@ -156,8 +156,9 @@ class SpdTracer {
     Color color = nff_ambient(s, intensity_);
     for (std::size_t l = 0; l < scene_->lights.size(); ++l) {
       const PointLight& light = scene_->lights[l];
-      if (!faces(h, light) || !visible(l)) continue;
-      const V to_light = V(light.position) - sp.p;
+      const V light_position(light.position);
+      const V to_light = light_position - sp.p;
+      if (!faces(h, to_light) || !visible(l, light_position, to_light)) continue;
       color += nff_direct(s, Vec3(ns), Vec3(-d), Vec3(glm::normalize(to_light)),
                           intensity_ * light.color);
     }

@@ -514,14 +514,10 @@ class WideBvh {
   /// The rays of `p` (lanes) that enter child `c` of `n` within [t_lo, t_hi] of each: lane by
   /// lane the operations of enter() for that ray and that child, so the same rays enter.
   static std::uint32_t enter_rays(const Node& n, int c, const RayPacket<PacketBatch>& p, const PacketBatch& t_hi) {
-    PacketBatch t0 = p.t_lo, t1 = t_hi;
-    for (int a = 0; a < 3; ++a) {
-      const PacketBatch lo(n.planes[2 * a][c]), hi(n.planes[2 * a + 1][c]);
-      const PacketBatch t_near = (xsimd::select(p.neg[a], hi, lo) - p.org[a]) * p.inv_dir[a];
-      const PacketBatch t_far = (xsimd::select(p.neg[a], lo, hi) - p.org[a]) * p.inv_far[a];
-      t0 = xsimd::select(t_near > t0, t_near, t0);
-      t1 = xsimd::select(t_far < t1, t_far, t1);
-    }
+    const float lo[3] = {n.planes[0][c], n.planes[2][c], n.planes[4][c]};
+    const float hi[3] = {n.planes[1][c], n.planes[3][c], n.planes[5][c]};
+    PacketBatch t0, t1;
+    box_interval(p, lo, hi, t_hi, t0, t1);
     return simd::mask_bits<PacketBatch>(t0 <= t1) & p.valid;
   }
 
