@@ -3,7 +3,8 @@
 // time through the structures that traverse packets) and rays spawned off the camera hits (incoherent);
 // any-hit queries of the shadow rays from the camera hits to every light (shadow); whole
 // renders (Render/: Whitted on spheres8000 at 1024x768, the SPD scenes at 256x256, all ray
-// kinds, one thread); plus build times over a grid of knobs.
+// kinds, one thread; RenderVsEmbree/: the same renders paired with Embree's, render by render);
+// plus build times over a grid of knobs.
 //
 // Every structure's hits are validated against naive before it is timed: all rays, same
 // primitive, bit-equal t. A mismatch skips that benchmark with an error and makes the binary
@@ -365,51 +366,113 @@ BenchScene& render_scene(const RenderCase& rc) {
   return *slot;
 }
 
-/// One thread, the whole image, all ray kinds; the image window in the middle of the frame is
-/// first rendered through naive and the structure and must be bit-equal. Times are the
-/// process's CPU time per render (manual time), so other processes do not count.
-void bm_render(benchmark::State& state, const RenderCase& rc, const std::string& name, const json& knobs) {
-  BenchScene* bs = nullptr;
+/// A render case's scene, integrator and one-thread options.
+struct RenderSetup {
+  BenchScene* scene = nullptr;
+  const tracer::Integrator* integrator = nullptr;
+  tracer::RenderOptions options;
+};
+
+/// Loads the scene of `rc` (cached); false, with the benchmark skipped, if that fails.
+bool render_setup(benchmark::State& state, const RenderCase& rc, RenderSetup& out) {
   try {
-    bs = &render_scene(rc);
+    out.scene = &render_scene(rc);
   } catch (const std::exception& e) {
     state.SkipWithError(e.what());
-    return;
+    return false;
   }
-  accel::AnyAccel a;
-  if (!build_or_skip(state, name, knobs, *bs, a)) return;
-  const tracer::Integrator& integrator = rc.spd ? tracer::spd_integrator() : tracer::whitted_integrator();
-  tracer::RenderOptions options;
-  options.threads = 1;
-  options.width = rc.width;
-  options.height = rc.height;
+  out.integrator = rc.spd ? &tracer::spd_integrator() : &tracer::whitted_integrator();
+  out.options.threads = 1;
+  out.options.width = rc.width;
+  out.options.height = rc.height;
+  return true;
+}
 
+/// Builds structure `name` for the render and renders the image window in the middle of the
+/// frame through it and through naive: they must be bit-equal. False, with the benchmark skipped
+/// (and counted as a validation failure if the images differ), otherwise.
+bool build_validated_render(benchmark::State& state, const RenderCase& rc, const RenderSetup& setup,
+                            const std::string& name, const json& knobs, accel::AnyAccel& a) {
+  BenchScene& bs = *setup.scene;
+  if (!build_or_skip(state, name, knobs, bs, a)) return false;
   // Validation window: 48 x 48 pixels at the centre.
-  tracer::RenderOptions window = options;
+  tracer::RenderOptions window = setup.options;
   window.window = {rc.width / 2 - 24, rc.height / 2 - 24, rc.width / 2 + 24, rc.height / 2 + 24};
   static std::map<std::string, tracer::Image> naive_windows;
   auto& want = naive_windows[rc.label];
   if (want.pixels().empty()) {
-    accel::AnyAccel naive = accel::make_accel("naive", nullptr, bs->boxes);
-    want = tracer::render(bs->scene, naive, window, integrator).image;
+    accel::AnyAccel naive = accel::make_accel("naive", nullptr, bs.boxes);
+    want = tracer::render(bs.scene, naive, window, *setup.integrator).image;
   }
-  const tracer::Image got = tracer::render(bs->scene, a, window, integrator).image;
+  const tracer::Image got = tracer::render(bs.scene, a, window, *setup.integrator).image;
   if (got.pixels().size() != want.pixels().size() ||
       std::memcmp(got.pixels().data(), want.pixels().data(), want.pixels().size() * sizeof(tracer::Image::Pixel)) != 0) {
     ++g_validation_failures;
-    state.SkipWithError("validation failed: the centre window differs from naive's render");
-    return;
+    state.SkipWithError(("validation failed: " + name + "'s centre window differs from naive's render").c_str());
+    return false;
   }
+  return true;
+}
+
+/// One timed render: the process's CPU seconds (other processes do not count) and its rays.
+double timed_render(const RenderSetup& setup, const accel::AnyAccel& a, std::uint64_t& rays) {
+  const double t0 = process_cpu_seconds();
+  const tracer::RenderResult r = tracer::render(setup.scene->scene, a, setup.options, *setup.integrator);
+  const double seconds = process_cpu_seconds() - t0;
+  rays = r.rays.total();
+  benchmark::DoNotOptimize(r.image.pixels().data());
+  return seconds;
+}
+
+/// One thread, the whole image, all ray kinds, validated against naive first. Times are the
+/// process's CPU time per render (manual time).
+void bm_render(benchmark::State& state, const RenderCase& rc, const std::string& name, const json& knobs) {
+  RenderSetup setup;
+  accel::AnyAccel a;
+  if (!render_setup(state, rc, setup) || !build_validated_render(state, rc, setup, name, knobs, a)) return;
   std::uint64_t rays = 0;
-  for (auto _ : state) {
-    const double t0 = process_cpu_seconds();
-    const tracer::RenderResult r = tracer::render(bs->scene, a, options, integrator);
-    state.SetIterationTime(process_cpu_seconds() - t0);
-    rays = r.rays.total();
-    benchmark::DoNotOptimize(r.image.pixels().data());
-  }
+  for (auto _ : state) state.SetIterationTime(timed_render(setup, a, rays));
   state.counters["rays_per_render"] = double(rays);
   state.SetLabel(accel::name_of(a) + " " + accel::params_of(a).dump());
+}
+
+/// The same render through a structure and through Embree, in pairs: each iteration renders
+/// with both, back to back, Embree first in every other pair. The time is the structure's; the
+/// counter `embree_ms_over_this` is Embree's time over the structure's summed over this
+/// repetition's pairs, so its median over the repetitions is a ratio of renders taken seconds
+/// apart. A slow spell of the host (tens of seconds) then slows both sides of a ratio, where it
+/// can decide the ratio of the two separate Render benchmarks' medians.
+void bm_render_vs_embree(benchmark::State& state, const RenderCase& rc, const std::string& name,
+                         const json& knobs, const std::shared_ptr<int>& pairs_so_far) {
+  RenderSetup setup;
+  accel::AnyAccel a, embree;
+  if (!render_setup(state, rc, setup) || !build_validated_render(state, rc, setup, name, knobs, a) ||
+      !build_validated_render(state, rc, setup, "embree", json::object(), embree))
+    return;
+  int& pair = *pairs_so_far;  // over all repetitions of this benchmark, to alternate the order
+  double this_s = 0, embree_s = 0;
+  std::uint64_t rays = 0, embree_rays = 0;
+  for (auto _ : state) {
+    double t = 0, e = 0;
+    if (pair++ % 2 == 0) {
+      t = timed_render(setup, a, rays);
+      e = timed_render(setup, embree, embree_rays);
+    } else {
+      e = timed_render(setup, embree, embree_rays);
+      t = timed_render(setup, a, rays);
+    }
+    state.SetIterationTime(t);
+    this_s += t;
+    embree_s += e;
+  }
+  if (rays != embree_rays) {
+    ++g_validation_failures;
+    state.SkipWithError("validation failed: the structure and Embree traced different numbers of rays");
+    return;
+  }
+  state.counters["rays_per_render"] = double(rays);
+  state.counters["embree_ms_over_this"] = this_s > 0 ? embree_s / this_s : 0.0;
+  state.SetLabel(accel::name_of(a) + " " + accel::params_of(a).dump() + " against embree");
 }
 
 /// Times building one structure with (max_depth, max_leaf_size) from the benchmark arguments.
@@ -531,11 +594,21 @@ void register_benchmarks() {
                        spd_dir.string().c_str(), ec.message().c_str());
   std::sort(spd_files.begin(), spd_files.end());
   for (const auto& f : spd_files) renders.push_back({f.stem().string(), f.string(), true, 256, 256});
+  const std::vector<Config> configs = trace_configs();
+  const bool has_embree =
+      std::any_of(configs.begin(), configs.end(), [](const Config& c) { return c.name == "embree"; });
   for (const RenderCase& rc : renders)
-    for (const Config& c : trace_configs()) {
+    for (const Config& c : configs) {
       if (c.name == "naive") continue;  // hours per render
       const std::string bm = "Render/" + rc.label + "/" + c.label;
       timed_ms(benchmark::RegisterBenchmark(bm.c_str(), bm_render, rc, c.name, c.knobs)
+          ->UseManualTime()
+          ->Iterations(rc.path.empty() ? 1 : 3)
+          );
+      if (!has_embree || c.name == "embree") continue;
+      const std::string paired = "RenderVsEmbree/" + rc.label + "/" + c.label;
+      timed_ms(benchmark::RegisterBenchmark(paired.c_str(), bm_render_vs_embree, rc, c.name, c.knobs,
+                                            std::make_shared<int>(0))
           ->UseManualTime()
           ->Iterations(rc.path.empty() ? 1 : 3)
           );

@@ -100,9 +100,34 @@ TEST(Registry, BenchmarksCoverEveryBuiltStructure) {
     if (s.name != "naive") {
       EXPECT_NE(list.output.find("Render/spheres8000/" + s.name + "/"), std::string::npos) << s.name;
     }
+    // Every structure's render paired with Embree's, where Embree is built.
+    if (ACCELBENCH_HAVE_EMBREE && s.name != "naive" && s.name != "embree") {
+      EXPECT_NE(list.output.find("RenderVsEmbree/spheres8000/" + s.name + "/"), std::string::npos) << s.name;
+    }
   }
 #else
   GTEST_SKIP() << "bench_trace is not built (ACCELBENCH_BENCHMARKS=OFF)";
+#endif
+}
+
+// The paired render benchmark validates both structures, renders both, and reports Embree's time
+// over the structure's as a counter (one render of spheres8000 at 1024x768 each, about a second).
+TEST(Registry, RenderVsEmbreeReportsThePairedRatio) {
+#if defined(ACCELBENCH_BENCH_TRACE) && ACCELBENCH_HAVE_EMBREE
+  const ProcessRun r = run(std::string(ACCELBENCH_BENCH_TRACE) +
+                           " --benchmark_filter='^RenderVsEmbree/spheres8000/bvh8/' --benchmark_format=json 2>&1");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const std::size_t at = r.output.find("\"embree_ms_over_this\": ");
+  ASSERT_NE(at, std::string::npos) << r.output;
+  const double ratio = std::stod(r.output.substr(at + 23));
+  // A ratio of two renders of the same image: positive and finite, whatever the host does.
+  EXPECT_GT(ratio, 0.05) << r.output;
+  EXPECT_LT(ratio, 20.0) << r.output;
+  const std::size_t rays_at = r.output.find("\"rays_per_render\": ");
+  ASSERT_NE(rays_at, std::string::npos) << r.output;
+  EXPECT_GE(std::stod(r.output.substr(rays_at + 19)), 1024.0 * 768.0) << "a camera ray per pixel at least";
+#else
+  GTEST_SKIP() << "needs bench_trace and Embree";
 #endif
 }
 
