@@ -439,9 +439,9 @@ void bm_render(benchmark::State& state, const RenderCase& rc, const std::string&
 /// The same render through a structure and through Embree, in pairs: each iteration renders
 /// with both, back to back, Embree first in every other pair. The time is the structure's; the
 /// counter `embree_ms_over_this` is Embree's time over the structure's summed over this
-/// repetition's pairs, so its median over the repetitions is a ratio of renders taken seconds
-/// apart. A slow spell of the host (tens of seconds) then slows both sides of a ratio, where it
-/// can decide the ratio of the two separate Render benchmarks' medians.
+/// repetition's pairs, so its median over the repetitions is a ratio of renders taken back to
+/// back (well under a second apart). A slow spell of the host (tens of seconds) then slows both
+/// sides of a ratio, where it can decide the ratio of the two separate Render benchmarks' medians.
 void bm_render_vs_embree(benchmark::State& state, const RenderCase& rc, const std::string& name,
                          const json& knobs, const std::shared_ptr<int>& pairs_so_far) {
   RenderSetup setup;
