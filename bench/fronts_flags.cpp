@@ -4,6 +4,8 @@
 #include "integrators.h"
 #include "sweep_definition.h"
 
+#include <CLI/CLI.hpp>
+
 #include <algorithm>
 #include <cctype>
 #include <charconv>

@@ -4,6 +4,8 @@
 #include "sweep_definition.h"
 #include "sweep_results.h"
 
+#include <CLI/CLI.hpp>
+
 #include <charconv>
 #include <cmath>
 #include <cstdio>
