@@ -117,15 +117,16 @@ TEST(Registry, RenderVsEmbreeReportsThePairedRatio) {
   const ProcessRun r = run(std::string(ACCELBENCH_BENCH_TRACE) +
                            " --benchmark_filter='^RenderVsEmbree/spheres8000/bvh8/' --benchmark_format=json 2>&1");
   ASSERT_EQ(r.status, 0) << r.output;
-  const std::size_t at = r.output.find("\"embree_ms_over_this\": ");
+  const std::string ratio_key = "\"embree_ms_over_this\": ", rays_key = "\"rays_per_render\": ";
+  const std::size_t at = r.output.find(ratio_key);
   ASSERT_NE(at, std::string::npos) << r.output;
-  const double ratio = std::stod(r.output.substr(at + 23));
+  const double ratio = std::stod(r.output.substr(at + ratio_key.size()));
   // A ratio of two renders of the same image: positive and finite, whatever the host does.
   EXPECT_GT(ratio, 0.05) << r.output;
   EXPECT_LT(ratio, 20.0) << r.output;
-  const std::size_t rays_at = r.output.find("\"rays_per_render\": ");
+  const std::size_t rays_at = r.output.find(rays_key);
   ASSERT_NE(rays_at, std::string::npos) << r.output;
-  EXPECT_GE(std::stod(r.output.substr(rays_at + 19)), 1024.0 * 768.0) << "a camera ray per pixel at least";
+  EXPECT_GE(std::stod(r.output.substr(rays_at + rays_key.size())), 1024.0 * 768.0) << "a camera ray per pixel at least";
 #else
   GTEST_SKIP() << "needs bench_trace and Embree";
 #endif
