@@ -30,6 +30,7 @@
 #include "validated_main.h"
 
 #include "photon/photon_map.h"
+#include "tracer/parallel.h"
 
 #include <benchmark/benchmark.h>
 
@@ -40,7 +41,6 @@
 #include <map>
 #include <memory>
 #include <string>
-#include <thread>
 #include <vector>
 
 namespace {
@@ -81,33 +81,29 @@ struct Reference {
     const std::size_t nq = set.queries.size();
     found.resize(nq * kMaxK);
     count.resize(nq);
-    const unsigned threads = std::max(1u, std::thread::hardware_concurrency());
-    std::vector<std::thread> pool;
-    for (unsigned t = 0; t < threads; ++t) {
-      pool.emplace_back([&, t] {
-        std::vector<Found> near;
-        for (std::size_t q = t; q < nq; q += threads) {
-          const PhotonQuery& qp = set.queries[q];
-          for (float r2 = 1e-4f;; r2 *= 4.0f) {
-            near.clear();
-            for (std::uint32_t i = 0; i < set.photons.size(); ++i) {
-              const photon::Vec3& p = set.photons[i].position;
-              const float dx = qp.position.x - p.x, dy = qp.position.y - p.y,
-                          dz = qp.position.z - p.z;
-              const float d2 = dx * dx + dy * dy + dz * dz;
-              if (d2 < r2 && (!cull || set.photons[i].arrives_from_side_of(qp.normal)))
-                near.push_back({d2, i});
-            }
-            if (near.size() >= kMaxK || r2 > 64.0f) break;  // the box's diagonal is 3.5: 64 is all
-          }
-          std::sort(near.begin(), near.end(), before);
-          const std::size_t n = std::min<std::size_t>(near.size(), kMaxK);
-          std::copy(near.begin(), near.begin() + n, found.begin() + q * kMaxK);
-          count[q] = std::uint32_t(n);
+    const int threads = tracer::resolve_threads(0);
+    std::vector<std::vector<Found>> nears(threads);  // one scratch list per worker
+    tracer::parallel_items(threads, int(nq), [&](int worker, int item) {
+      const std::size_t q = std::size_t(item);
+      std::vector<Found>& near = nears[worker];
+      const PhotonQuery& qp = set.queries[q];
+      for (float r2 = 1e-4f;; r2 *= 4.0f) {
+        near.clear();
+        for (std::uint32_t i = 0; i < set.photons.size(); ++i) {
+          const photon::Vec3& p = set.photons[i].position;
+          const float dx = qp.position.x - p.x, dy = qp.position.y - p.y,
+                      dz = qp.position.z - p.z;
+          const float d2 = dx * dx + dy * dy + dz * dz;
+          if (d2 < r2 && (!cull || set.photons[i].arrives_from_side_of(qp.normal)))
+            near.push_back({d2, i});
         }
-      });
-    }
-    for (std::thread& th : pool) th.join();
+        if (near.size() >= kMaxK || r2 > 64.0f) break;  // the box's diagonal is 3.5: 64 is all
+      }
+      std::sort(near.begin(), near.end(), before);
+      const std::size_t n = std::min<std::size_t>(near.size(), kMaxK);
+      std::copy(near.begin(), near.begin() + n, found.begin() + q * kMaxK);
+      count[q] = std::uint32_t(n);
+    });
   }
 
   /// The expected answer for query q, k photons, radius r.
