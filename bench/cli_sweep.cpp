@@ -185,7 +185,7 @@ int run(const SweepFlags& f) {
   o.resume = f.resume;
   o.progress = !f.quiet;
   // One render thread stays on the CPU it starts on: moved between the two vCPUs of a VM, the
-  // same render took up to 17% longer, unequally per structure (docs/sweeps.md).
+  // same render took up to 18% longer, unequally per structure (docs/sweeps.md).
   const int pinned = d.threads == 1 && !f.no_pin ? pin_to_current_cpu() : -1;
   if (!f.quiet && pinned >= 0)
     std::fprintf(stderr, "sweep: one render thread, kept on CPU %d (--no-pin leaves it free)\n", pinned);
