@@ -6,6 +6,7 @@
 #include "balanced_tree.h"
 
 #include "accel/geometry.h"
+#include "tracer/parallel.h"
 
 #include <algorithm>
 #include <bit>
@@ -117,8 +118,7 @@ BalancedTree::BalancedTree(std::span<const Photon> photons, int build_threads) {
     heap_.resize(std::size_t(n) + 1);
     ids_.resize(std::size_t(n) + 1);
     Builder b(heap_, ids_);
-    const int threads = build_threads > 0 ? build_threads
-                                          : int(std::max(1u, std::thread::hardware_concurrency()));
+    const int threads = tracer::resolve_threads(build_threads);
     stats_.depth = b.build(items.data(), n, 1, bounds_, threads);
     // The photons' records, gathered in node order once the tree is built: one pass of
     // independent loads that the processor overlaps, where copying each record as its node was
