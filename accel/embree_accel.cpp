@@ -59,15 +59,21 @@ void bounds_fn(const RTCBoundsFunctionArguments* args) {
 
 const QueryContext& query_of(RTCIntersectContext* c) { return *reinterpret_cast<const QueryContext*>(c); }
 
-// The callbacks serve rtcIntersect1 and rtcOccluded1 (N = 1) and rtcIntersect16 (N = 16, lane
-// i being ray i of the caller's packet).
+// The callbacks serve rtcIntersect1/4/8/16 and rtcOccluded1/4/8/16. Embree hands them N lanes
+// of its own: the caller's whole packet, part of it, reordered copies, or single rays, depending
+// on its instruction set. The ray's id (set to the caller's lane by fill_lane) says which of the
+// caller's rays a lane is. Embree's emulation of a packet wider than its instruction set (an
+// rtcIntersect8 at sse2) also hands over the lanes the valid mask turned off, marked valid:
+// ids past the query's rays are skipped.
 void intersect_fn(const RTCIntersectFunctionNArguments* args) {
   const QueryContext& q = query_of(args->context);
   RTCRayN* ray = RTCRayHitN_RayN(args->rayhit, args->N);
   RTCHitN* hit = RTCRayHitN_HitN(args->rayhit, args->N);
   for (unsigned i = 0; i < args->N; ++i) {
-    if (!args->valid[i] || !q.test(q, i, args->primID)) continue;
-    RTCRayN_tfar(ray, args->N, i) = widen_up(q.rays[i].tmax);
+    if (!args->valid[i]) continue;
+    const unsigned id = RTCRayN_id(ray, args->N, i);
+    if (id >= q.count || !q.test(q, id, args->primID)) continue;
+    RTCRayN_tfar(ray, args->N, i) = widen_up(q.rays[id].tmax);
     RTCHitN_primID(hit, args->N, i) = args->primID;
     RTCHitN_geomID(hit, args->N, i) = args->geomID;
   }
@@ -75,8 +81,11 @@ void intersect_fn(const RTCIntersectFunctionNArguments* args) {
 
 void occluded_fn(const RTCOccludedFunctionNArguments* args) {
   const QueryContext& q = query_of(args->context);
-  for (unsigned i = 0; i < args->N; ++i)
-    if (args->valid[i] && q.test(q, i, args->primID)) RTCRayN_tfar(args->ray, args->N, i) = -kInfinity;
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (!args->valid[i]) continue;
+    const unsigned id = RTCRayN_id(args->ray, args->N, i);
+    if (id < q.count && q.test(q, id, args->primID)) RTCRayN_tfar(args->ray, args->N, i) = -kInfinity;
+  }
 }
 
 }  // namespace
@@ -92,8 +101,12 @@ EmbreeAccel::EmbreeAccel(std::span<const Aabb> boxes, const EmbreeParams& params
                          ? std::numeric_limits<std::int64_t>::max()
                          : std::int64_t(budget);
 
-  const std::string config =
-      params_.build_threads > 0 ? "threads=" + std::to_string(params_.build_threads) : "";
+  const IsaSet cpu = cpu_isas();
+  check_embree_isa(params_.isa, cpu);
+  isa_ = resolve_embree_isa(params_.isa, cpu);
+  packet_lanes_ = resolve_embree_packet(params_.packet, isa_);
+  std::string config = "isa=" + std::string(isa_name(isa_));
+  if (params_.build_threads > 0) config += ",threads=" + std::to_string(params_.build_threads);
   device_ = embree_detail::Device(rtcNewDevice(config.c_str()));
   if (!device_.get()) throw ConfigError("embree: rtcNewDevice failed (config '" + config + "')");
   rtcSetDeviceErrorFunction(device_.get(), embree_detail::on_error, monitor_.get());
@@ -139,6 +152,8 @@ EmbreeAccel& EmbreeAccel::operator=(EmbreeAccel&& o) noexcept {
   device_ = std::move(o.device_);
   monitor_ = std::move(o.monitor_);
   params_ = o.params_;
+  isa_ = o.isa_;
+  packet_lanes_ = o.packet_lanes_;
   stats_ = o.stats_;
   return *this;
 }

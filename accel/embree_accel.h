@@ -69,10 +69,11 @@ using Scene = RtcHandle<RTCScene, rtcReleaseScene>;
 /// which is the first member of a standard-layout struct, so it converts back to the whole.
 struct QueryContext {
   RTCIntersectContext rtc;  ///< Must stay first.
-  Ray* rays;                ///< Our ray, or a packet's rays by lane; the leaf function shortens tmax.
+  Ray* rays;                ///< Our ray, or a packet's rays by id; the leaf function shortens tmax.
+  unsigned count;           ///< Rays in `rays`; lanes with a larger id are not the caller's.
   void* leaf;               ///< The caller's leaf closure.
   TraversalCounters* counters;  ///< Counting pass only; else null.
-  /// Calls the leaf closure for one primitive and the ray of one lane (one instantiation per
+  /// Calls the leaf closure for one primitive and the ray with id `lane` (one instantiation per
   /// closure type).
   bool (*test)(const QueryContext& q, unsigned lane, std::uint32_t prim);
 };
@@ -90,6 +91,54 @@ template <bool Count, class LeafFn>
 bool call_packet_leaf(const QueryContext& q, unsigned lane, std::uint32_t prim) {
   if constexpr (Count) q.counters->prims_tested++;
   return (*static_cast<LeafFn*>(q.leaf))(std::size_t(lane), prim, q.rays[lane]);
+}
+
+/// Embree's packet types and queries of K rays (4, 8 or 16).
+template <int K>
+struct PacketApi;
+template <>
+struct PacketApi<4> {
+  using RayHitK = RTCRayHit4;
+  using RayK = RTCRay4;
+  static void intersect(const int* v, RTCScene s, RTCIntersectContext* c, RayHitK* r) { rtcIntersect4(v, s, c, r); }
+  static void occluded(const int* v, RTCScene s, RTCIntersectContext* c, RayK* r) { rtcOccluded4(v, s, c, r); }
+};
+template <>
+struct PacketApi<8> {
+  using RayHitK = RTCRayHit8;
+  using RayK = RTCRay8;
+  static void intersect(const int* v, RTCScene s, RTCIntersectContext* c, RayHitK* r) { rtcIntersect8(v, s, c, r); }
+  static void occluded(const int* v, RTCScene s, RTCIntersectContext* c, RayK* r) { rtcOccluded8(v, s, c, r); }
+};
+template <>
+struct PacketApi<16> {
+  using RayHitK = RTCRayHit16;
+  using RayK = RTCRay16;
+  static void intersect(const int* v, RTCScene s, RTCIntersectContext* c, RayHitK* r) { rtcIntersect16(v, s, c, r); }
+  static void occluded(const int* v, RTCScene s, RTCIntersectContext* c, RayK* r) { rtcOccluded16(v, s, c, r); }
+};
+
+/// What fills a packet's lanes past the caller's rays: an empty interval, in case Embree traces
+/// a lane its valid mask turned off (see intersect_fn).
+inline constexpr Ray kUnusedLane{Vec3(0.0f), 1.0f, Vec3(0.0f, 0.0f, 1.0f), 0.0f};
+
+/// Lane i of an Embree packet of rays (RTCRay4/8/16) from `ray`. The id is the lane: Embree may
+/// hand the callbacks fewer lanes than the packet, or reordered copies, so they find the
+/// caller's ray by its id, never by their own lane index.
+template <class RayK>
+void fill_lane(RayK& r, std::size_t i, const Ray& ray) {
+  r.org_x[i] = ray.org.x;
+  r.org_y[i] = ray.org.y;
+  r.org_z[i] = ray.org.z;
+  r.tnear[i] = widen_down(ray.tmin);
+  r.dir_x[i] = ray.dir.x;
+  r.dir_y[i] = ray.dir.y;
+  r.dir_z[i] = ray.dir.z;
+  r.time[i] = 0.0f;
+  r.tfar[i] = widen_up(ray.tmax);
+  r.mask[i] = 0xffffffffu;
+  r.id[i] = unsigned(i);
+  r.flags[i] = 0;
 }
 
 struct MemoryMonitor;
@@ -123,39 +172,15 @@ class EmbreeAccel {
     rtcIntersect1(scene_.get(), &q.rtc, &rh);
   }
 
-  /// Closest hit for each of `rays` through rtcIntersect16, 16 rays at a time, flagged coherent:
-  /// Embree's packet traversal, the peer of intersect_packet in the wide BVHs. leaf_fn(lane, id,
-  /// ray) takes the ray's index in `rays`.
+  /// Closest hit for each of `rays` through rtcIntersect4/8/16 (the `packet` knob), flagged
+  /// coherent: Embree's packet traversal, the peer of intersect_packet in the wide BVHs.
+  /// leaf_fn(lane, id, ray) takes the ray's index in `rays`.
   template <bool Count = false, class LeafFn>
   void intersect_packet(std::span<Ray> rays, LeafFn&& leaf_fn, TraversalCounters* counters = nullptr) const {
-    constexpr std::size_t kLanes = 16;
-    for (std::size_t base = 0; base < rays.size(); base += kLanes) {
-      const std::size_t n = std::min(kLanes, rays.size() - base);
-      if constexpr (Count) counters->rays += n;
-      Lane<LeafFn> lane_fn{&leaf_fn, base};
-      embree_detail::QueryContext q = context<Count, true>(rays[base], lane_fn, counters);
-      q.rtc.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-      alignas(64) int valid[kLanes];
-      alignas(64) RTCRayHit16 rh;
-      for (std::size_t i = 0; i < kLanes; ++i) {
-        valid[i] = i < n ? -1 : 0;
-        const Ray& ray = rays[base + (i < n ? i : 0)];
-        rh.ray.org_x[i] = ray.org.x;
-        rh.ray.org_y[i] = ray.org.y;
-        rh.ray.org_z[i] = ray.org.z;
-        rh.ray.tnear[i] = widen_down(ray.tmin);
-        rh.ray.dir_x[i] = ray.dir.x;
-        rh.ray.dir_y[i] = ray.dir.y;
-        rh.ray.dir_z[i] = ray.dir.z;
-        rh.ray.time[i] = 0.0f;
-        rh.ray.tfar[i] = widen_up(ray.tmax);
-        rh.ray.mask[i] = 0xffffffffu;
-        rh.ray.id[i] = unsigned(i);
-        rh.ray.flags[i] = 0;
-        rh.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
-        rh.hit.primID[i] = RTC_INVALID_GEOMETRY_ID;
-      }
-      rtcIntersect16(valid, scene_.get(), &q.rtc, &rh);
+    switch (packet_lanes_) {
+      case 4: return intersect_packets<4, Count>(rays, leaf_fn, counters);
+      case 8: return intersect_packets<8, Count>(rays, leaf_fn, counters);
+      default: return intersect_packets<16, Count>(rays, leaf_fn, counters);
     }
   }
 
@@ -171,48 +196,24 @@ class EmbreeAccel {
     return r.tfar == -kInfinity;
   }
 
-  /// Any hit for each of up to 32 rays through rtcOccluded16, 16 at a time, flagged coherent:
-  /// the peer of the wide BVHs' occluded_packet. Bit i of the result is set when rays[i] is
-  /// occluded; leaf_fn(lane, id, ray) takes the ray's index in `rays`.
+  /// Any hit for each of up to 32 rays through rtcOccluded4/8/16 (the `packet` knob), flagged
+  /// coherent: the peer of the wide BVHs' occluded_packet. Bit i of the result is set when
+  /// rays[i] is occluded; leaf_fn(lane, id, ray) takes the ray's index in `rays`.
   template <bool Count = false, class LeafFn>
-  std::uint32_t occluded_packet(std::span<const Ray> rays_in, LeafFn&& leaf_fn,
+  std::uint32_t occluded_packet(std::span<const Ray> rays, LeafFn&& leaf_fn,
                                 TraversalCounters* counters = nullptr) const {
-    constexpr std::size_t kLanes = 16;
-    std::uint32_t occluded = 0;
-    for (std::size_t base = 0; base < rays_in.size() && base < 32; base += kLanes) {
-      const std::size_t n = std::min(kLanes, rays_in.size() - base);
-      if constexpr (Count) counters->rays += n;
-      Ray rays[kLanes];
-      std::copy_n(rays_in.begin() + std::ptrdiff_t(base), n, rays);
-      Lane<LeafFn> lane_fn{&leaf_fn, base};
-      embree_detail::QueryContext q = context<Count, true>(rays[0], lane_fn, counters);
-      q.rtc.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-      alignas(64) int valid[kLanes];
-      alignas(64) RTCRay16 r;
-      for (std::size_t i = 0; i < kLanes; ++i) {
-        valid[i] = i < n ? -1 : 0;
-        const Ray& ray = rays[i < n ? i : 0];
-        r.org_x[i] = ray.org.x;
-        r.org_y[i] = ray.org.y;
-        r.org_z[i] = ray.org.z;
-        r.tnear[i] = widen_down(ray.tmin);
-        r.dir_x[i] = ray.dir.x;
-        r.dir_y[i] = ray.dir.y;
-        r.dir_z[i] = ray.dir.z;
-        r.time[i] = 0.0f;
-        r.tfar[i] = widen_up(ray.tmax);
-        r.mask[i] = 0xffffffffu;
-        r.id[i] = unsigned(i);
-        r.flags[i] = 0;
-      }
-      rtcOccluded16(valid, scene_.get(), &q.rtc, &r);
-      for (std::size_t i = 0; i < n; ++i)
-        if (r.tfar[i] == -kInfinity) occluded |= 1u << (base + i);
+    switch (packet_lanes_) {
+      case 4: return occluded_packets<4, Count>(rays, leaf_fn, counters);
+      case 8: return occluded_packets<8, Count>(rays, leaf_fn, counters);
+      default: return occluded_packets<16, Count>(rays, leaf_fn, counters);
     }
-    return occluded;
   }
 
   const EmbreeParams& params() const { return params_; }
+  /// The instruction set Embree's kernels run at.
+  Isa isa() const { return isa_; }
+  /// Rays per packet query.
+  int packet_lanes() const { return packet_lanes_; }
   const BuildStats& stats() const { return stats_; }
   /// Which statistics Embree cannot report.
   static const char* stats_note() {
@@ -230,13 +231,63 @@ class EmbreeAccel {
     bool operator()(std::size_t lane, std::uint32_t id, Ray& ray) const { return (*leaf_fn)(base + lane, id, ray); }
   };
 
+  /// intersect_packet with K rays per Embree query.
+  template <int K, bool Count, class LeafFn>
+  void intersect_packets(std::span<Ray> rays, LeafFn& leaf_fn, TraversalCounters* counters) const {
+    using Api = embree_detail::PacketApi<K>;
+    for (std::size_t base = 0; base < rays.size(); base += K) {
+      const std::size_t n = std::min(std::size_t(K), rays.size() - base);
+      if constexpr (Count) counters->rays += n;
+      Lane<LeafFn> lane_fn{&leaf_fn, base};
+      embree_detail::QueryContext q = context<Count, true>(rays[base], lane_fn, counters, n);
+      q.rtc.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+      alignas(64) int valid[K];
+      alignas(64) typename Api::RayHitK rh;
+      for (std::size_t i = 0; i < std::size_t(K); ++i) {
+        valid[i] = i < n ? -1 : 0;
+        embree_detail::fill_lane(rh.ray, i, i < n ? rays[base + i] : embree_detail::kUnusedLane);
+        rh.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
+        rh.hit.primID[i] = RTC_INVALID_GEOMETRY_ID;
+      }
+      Api::intersect(valid, scene_.get(), &q.rtc, &rh);
+    }
+  }
+
+  /// occluded_packet with K rays per Embree query.
+  template <int K, bool Count, class LeafFn>
+  std::uint32_t occluded_packets(std::span<const Ray> rays_in, LeafFn& leaf_fn, TraversalCounters* counters) const {
+    using Api = embree_detail::PacketApi<K>;
+    std::uint32_t occluded = 0;
+    for (std::size_t base = 0; base < rays_in.size() && base < 32; base += K) {
+      const std::size_t n = std::min(std::size_t(K), rays_in.size() - base);
+      if constexpr (Count) counters->rays += n;
+      Ray rays[K];
+      std::copy_n(rays_in.begin() + std::ptrdiff_t(base), n, rays);
+      Lane<LeafFn> lane_fn{&leaf_fn, base};
+      embree_detail::QueryContext q = context<Count, true>(rays[0], lane_fn, counters, n);
+      q.rtc.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+      alignas(64) int valid[K];
+      alignas(64) typename Api::RayK r;
+      for (std::size_t i = 0; i < std::size_t(K); ++i) {
+        valid[i] = i < n ? -1 : 0;
+        embree_detail::fill_lane(r, i, i < n ? rays[i] : embree_detail::kUnusedLane);
+      }
+      Api::occluded(valid, scene_.get(), &q.rtc, &r);
+      for (std::size_t i = 0; i < n; ++i)
+        if (r.tfar[i] == -kInfinity) occluded |= 1u << (base + i);
+    }
+    return occluded;
+  }
+
   /// The query's context: `rays` is the ray, or lane 0 of a packet's rays.
   template <bool Count, bool Packet = false, class LeafFn>
-  static embree_detail::QueryContext context(Ray& rays, LeafFn& leaf_fn, TraversalCounters* counters) {
+  static embree_detail::QueryContext context(Ray& rays, LeafFn& leaf_fn, TraversalCounters* counters,
+                                             std::size_t count = 1) {
     using L = std::remove_reference_t<LeafFn>;
     embree_detail::QueryContext q;
     rtcInitIntersectContext(&q.rtc);
     q.rays = &rays;
+    q.count = unsigned(count);
     q.leaf = const_cast<void*>(static_cast<const void*>(std::addressof(leaf_fn)));
     q.counters = counters;
     if constexpr (Packet)
@@ -261,6 +312,8 @@ class EmbreeAccel {
   }
 
   EmbreeParams params_;
+  Isa isa_ = Isa::Sse2;    ///< The level Embree's kernels run at (params_.isa resolved).
+  int packet_lanes_ = 16;  ///< Rays per packet query (params_.packet resolved).
   // Declared before the scene so that it is released after it (members die in reverse order).
   std::unique_ptr<embree_detail::MemoryMonitor> monitor_;
   embree_detail::Device device_;

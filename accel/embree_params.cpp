@@ -1,5 +1,7 @@
 #include "embree_params.h"
 
+#include <string>
+
 namespace accel {
 
 const KnobTable<EmbreeParams>& EmbreeParams::knobs() {
@@ -13,8 +15,63 @@ const KnobTable<EmbreeParams>& EmbreeParams::knobs() {
                   "RTC_SCENE_FLAG_ROBUST: conservative box tests, so no primitive is culled by rounding."),
        K::integer("build_threads", &EmbreeParams::build_threads, 0, 1024, "threads",
                   "Threads Embree's builder may use; 0 = every core (the other builders use one).")
-           .probes({0, 1})});
+           .probes({0, 1}),
+       K::choice("isa", &EmbreeParams::isa,
+                 {{"build", EmbreeIsa::Build},
+                  {"cpu", EmbreeIsa::Cpu},
+                  {"sse2", EmbreeIsa::Sse2},
+                  {"sse4.2", EmbreeIsa::Sse42},
+                  {"avx", EmbreeIsa::Avx},
+                  {"avx2", EmbreeIsa::Avx2},
+                  {"avx512", EmbreeIsa::Avx512}},
+                 "Embree's instruction set: `build` = the one this build targets (like for like), "
+                 "`cpu` = the highest the CPU has; a level the CPU lacks is refused.")
+           .crossed()
+           .probes({"sse2", "sse4.2", "avx", "avx2", "avx512"}),
+       K::choice("packet", &EmbreeParams::packet,
+                 {{"auto", EmbreePacket::Auto},
+                  {"4", EmbreePacket::Lanes4},
+                  {"8", EmbreePacket::Lanes8},
+                  {"16", EmbreePacket::Lanes16}},
+                 "Rays per packet query (rtcIntersect4/8/16); `auto` = Embree's native width at "
+                 "its instruction set.")
+           .crossed()});
   return table;
+}
+
+Isa resolve_embree_isa(EmbreeIsa isa, IsaSet cpu) {
+  switch (isa) {
+    case EmbreeIsa::Build: return build_isa();
+    case EmbreeIsa::Cpu: {
+      Isa best = Isa::Sse2;
+      for (Isa level : isas_in(cpu)) best = level;
+      return best;
+    }
+    case EmbreeIsa::Sse2: return Isa::Sse2;
+    case EmbreeIsa::Sse42: return Isa::Sse42;
+    case EmbreeIsa::Avx: return Isa::Avx;
+    case EmbreeIsa::Avx2: return Isa::Avx2;
+    case EmbreeIsa::Avx512: return Isa::Avx512;
+  }
+  return Isa::Sse2;
+}
+
+int resolve_embree_packet(EmbreePacket packet, Isa isa) {
+  switch (packet) {
+    case EmbreePacket::Auto: return isa_lanes(isa);
+    case EmbreePacket::Lanes4: return 4;
+    case EmbreePacket::Lanes8: return 8;
+    case EmbreePacket::Lanes16: return 16;
+  }
+  return 16;
+}
+
+void check_embree_isa(EmbreeIsa isa, IsaSet cpu) {
+  const Isa level = resolve_embree_isa(isa, cpu);
+  if (cpu & isa_bit(level)) return;
+  const std::string spelled = EmbreeParams::knobs().find("isa")->get(EmbreeParams{.isa = isa}).get<std::string>();
+  throw ConfigError("embree: parameter 'isa' = " + spelled + " needs " + isa_features(level) +
+                    ", which this CPU lacks (it has " + isa_list(cpu) + ")");
 }
 
 }  // namespace accel

@@ -2,6 +2,7 @@
 // Knobs of the Embree adapter (embree_accel.h). Compiled whether or not Embree 3 was found, so
 // that the knob reference and the registry know them in every build.
 
+#include "isa.h"
 #include "knob_table.h"
 
 #include <cstdint>
@@ -10,6 +11,25 @@ namespace accel {
 
 /// Embree's BVH build quality.
 enum class EmbreeQuality : std::uint8_t { Medium, High };
+
+/// The instruction set Embree's kernels run at (its device config `isa=`).
+enum class EmbreeIsa : std::uint8_t {
+  Build,  ///< The level this build of accelbench targets (build_isa()): like for like.
+  Cpu,    ///< Embree's own pick: the highest the CPU has.
+  Sse2,
+  Sse42,
+  Avx,
+  Avx2,
+  Avx512,
+};
+
+/// Rays per Embree packet query (rtcIntersect4/8/16, rtcOccluded4/8/16).
+enum class EmbreePacket : std::uint8_t {
+  Auto,     ///< Embree's native width at its ISA: 16 at avx512, 8 at avx/avx2, 4 below.
+  Lanes4,
+  Lanes8,
+  Lanes16,
+};
 
 /// Knobs of the Embree adapter.
 struct EmbreeParams {
@@ -20,9 +40,21 @@ struct EmbreeParams {
   /// Threads Embree's TBB builder may use; 0 = Embree's default (every core). The other
   /// builders are single-threaded, so 1 keeps build times comparable.
   int build_threads = 1;
+  /// Instruction set of Embree's kernels; one the CPU lacks is refused.
+  EmbreeIsa isa = EmbreeIsa::Build;
+  /// Rays per packet query of the packet traversals.
+  EmbreePacket packet = EmbreePacket::Auto;
 
   /// Name, range, unit and doc line of every knob above.
   static const KnobTable<EmbreeParams>& knobs();
 };
+
+/// The level `isa` stands for on a CPU with the levels `cpu` (Build and Cpu resolved).
+Isa resolve_embree_isa(EmbreeIsa isa, IsaSet cpu);
+/// Rays per packet query for `packet` at Embree's level `isa`: 4, 8 or 16.
+int resolve_embree_packet(EmbreePacket packet, Isa isa);
+/// Throws ConfigError, one line naming the level and the knob, when `isa` asks for a level the
+/// CPU with the levels `cpu` lacks.
+void check_embree_isa(EmbreeIsa isa, IsaSet cpu);
 
 }  // namespace accel

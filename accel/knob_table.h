@@ -99,7 +99,7 @@ class Knob {
     };
     k.set_ = [member, names](P& p, const nlohmann::json& v) {
       for (const auto& [spelling, e] : names)
-        if (v.get<std::string>() == spelling) p.*member = e;
+        if (choice_spelling(v) == spelling) p.*member = e;
     };
     return k;
   }
@@ -167,9 +167,9 @@ class Knob {
         if (!v.is_boolean()) fail_type(owner, "true or false", v);
         return;
       case KnobType::Choice: {
-        if (v.is_string())
+        if (v.is_string() || v.is_number_integer())
           for (const std::string& c : choices_)
-            if (v.get<std::string>() == c) return;
+            if (choice_spelling(v) == c) return;
         fail(owner, "must be one of " + choice_text() + ", got " + v.dump());
       }
     }
@@ -236,6 +236,12 @@ class Knob {
     } else {
       return double(x);
     }
+  }
+
+  /// A choice as text: a string as itself, an integer as its digits (`--knob packet=8` reads
+  /// the 8 as a number; the choice is spelled "8").
+  static std::string choice_spelling(const nlohmann::json& v) {
+    return v.is_string() ? v.get<std::string>() : v.dump();
   }
 
   std::string choice_text() const {

@@ -3,6 +3,7 @@
 
 #include "accel/accel.h"
 #include "scenes_gen/generators.h"
+#include "structure_configs.h"
 #include "tracer/render.h"
 #include "tracer/scene_transform.h"
 
@@ -15,17 +16,11 @@
 
 namespace {
 
-struct Variant {
-  std::string accel;
-  nlohmann::json params;
-};
+using Variant = test_support::StructureConfig;
 
+/// Every structure (Embree at every ISA the CPU has), and the octree and kd-trees' rules.
 std::vector<Variant> variants() {
-  std::vector<Variant> out;
-  for (const std::string& name : accel::accel_names()) {
-    if (name == "naive" || !accel::accel_built(name)) continue;
-    out.push_back({name, nlohmann::json::object()});
-  }
+  std::vector<Variant> out = test_support::structures_at_every_isa();
   for (const char* placement : {"leaves", "every_level"}) {
     out.push_back({"octree", {{"placement", placement}, {"max_depth", 5}, {"max_leaf_size", 2}}});
     for (const char* split : {"midpoint", "sah"})
@@ -50,10 +45,9 @@ TEST(AccelImage, Spheres8000IsBitIdenticalThroughEveryStructure) {
   ASSERT_GT(reference.rays.shadow, 0u);
 
   for (const Variant& v : variants()) {
-    SCOPED_TRACE(v.accel + " " + v.params.dump());
+    SCOPED_TRACE(v.label());
     const tracer::RenderResult result =
-        tracer::render(scene, accel::make_accel(v.accel, v.params, boxes), options,
-                       tracer::whitted_integrator());
+        tracer::render(scene, v.build(boxes), options, tracer::whitted_integrator());
     EXPECT_EQ(result.image.content_hash(), reference.image.content_hash());
     EXPECT_TRUE(result.image == reference.image);
     EXPECT_TRUE(result.rays == reference.rays);
@@ -72,10 +66,9 @@ void expect_every_structure_equals_naive(const tracer::Scene& scene) {
                      tracer::whitted_integrator());
   ASSERT_GT(reference.rays.eye_hits, 500u);
   for (const Variant& v : variants()) {
-    SCOPED_TRACE(v.accel + " " + v.params.dump());
+    SCOPED_TRACE(v.label());
     const tracer::RenderResult result =
-        tracer::render(scene, accel::make_accel(v.accel, v.params, boxes), options,
-                       tracer::whitted_integrator());
+        tracer::render(scene, v.build(boxes), options, tracer::whitted_integrator());
     EXPECT_TRUE(result.image == reference.image);
     EXPECT_TRUE(result.rays == reference.rays);
   }

@@ -4,6 +4,8 @@
 
 #include "cli_run.h"
 
+#include "accel/isa.h"
+
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -190,6 +192,30 @@ TEST_F(Hostile, ScenesAndSceneFiles) {
   // The converted scene with the huge normal loads back: its normal was normalised, not zeroed.
   EXPECT_EQ(accelbench(dir_, "render out.json --resolution 8x8 --accel naive").status, 0);
 }
+
+#if ACCELBENCH_HAVE_EMBREE
+// Embree forced to an instruction set: an unknown name, and a level this CPU lacks, are refused
+// in one line naming the knob; every level the CPU has renders.
+TEST_F(Hostile, EmbreeInstructionSets) {
+  five();
+  expect_case(dir_, {"an unknown instruction set", "render five.json --accel embree --knob isa=avx9 --resolution 8x8",
+                     "accelbench: embree: parameter 'isa' must be one of build|cpu|sse2|sse4.2|avx|avx2|avx512, "
+                     "got \"avx9\""});
+  const accel::IsaSet cpu = accel::cpu_isas();
+  for (accel::Isa isa : accel::kIsas) {
+    const std::string name = accel::isa_name(isa);
+    const std::string args = "render five.json --accel embree --resolution 8x8 -o o.png --knob isa=" + name;
+    if (cpu & accel::isa_bit(isa)) {
+      const CliRun r = accelbench(dir_, args);
+      EXPECT_EQ(r.status, 0) << name << ": " << r.output;
+    } else {
+      expect_case(dir_, {"a level this CPU lacks", args,
+                         "accelbench: embree: parameter 'isa' = " + name + " needs " + accel::isa_features(isa) +
+                             ", which this CPU lacks (it has " + accel::isa_list(cpu) + ")"});
+    }
+  }
+}
+#endif
 
 TEST_F(Hostile, SweepFilesAndFlags) {
   write_text(dir_ / "deep.json", std::string(100000, '[') + std::string(100000, ']'));

@@ -2,10 +2,12 @@
 // must refuse `embree` with a clear message.
 
 #include "accel/accel.h"
+#include "accel/isa.h"
 #include "tracer/sphere.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 #include <string>
 #include <utility>
@@ -118,13 +120,82 @@ TEST(Embree, MovesKeepTheSceneAlive) {
 
 TEST(Embree, KnobsRoundTripAndMediumQualityAgrees) {
   const Spheres sp = random_spheres(300, 16);
-  const nlohmann::json knobs = {{"build_quality", "medium"}, {"robust", true}, {"build_threads", 2}};
+  const nlohmann::json knobs = {{"build_quality", "medium"}, {"robust", true}, {"build_threads", 2},
+                                {"isa", "sse4.2"},          {"packet", "16"}};
   const accel::AnyAccel any = accel::make_accel("embree", knobs, sp.boxes);
   EXPECT_EQ(accel::params_of(any), knobs);
   const accel::Naive naive(sp.boxes);
   Ray ray;
   ray.org = Vec3(0.3f, -0.2f, -20.0f);
   EXPECT_EQ(closest(std::get<accel::EmbreeAccel>(any), sp, ray), closest(naive, sp, ray));
+}
+
+// Every level the CPU has builds and runs at that level, with Embree's native packet width; every
+// other level is refused in one line naming the level and the knob. The oracle and image tests
+// cover the levels the CPU has through the knob's probes and structures_at_every_isa().
+TEST(Embree, RunsAtEveryIsaTheCpuHasAndRefusesTheOthers) {
+  const Spheres sp = random_spheres(300, 18);
+  const accel::IsaSet cpu = accel::cpu_isas();
+  EXPECT_TRUE(cpu & accel::isa_bit(accel::build_isa())) << "this build targets more than the CPU has";
+  int ran = 0;
+  for (accel::Isa isa : accel::kIsas) {
+    const std::string name = accel::isa_name(isa);
+    if (cpu & accel::isa_bit(isa)) {
+      const accel::AnyAccel any = accel::make_accel("embree", {{"isa", name}}, sp.boxes);
+      const auto& embree = std::get<accel::EmbreeAccel>(any);
+      EXPECT_EQ(embree.isa(), isa);
+      EXPECT_EQ(embree.packet_lanes(), accel::isa_lanes(isa));
+      Ray ray;
+      ray.org = Vec3(0.1f, 0.2f, -20.0f);
+      EXPECT_EQ(closest(embree, sp, ray), closest(accel::Naive(sp.boxes), sp, ray)) << name;
+      ++ran;
+    } else {
+      try {
+        accel::make_accel("embree", {{"isa", name}}, sp.boxes);
+        ADD_FAILURE() << name << ": expected a refusal";
+      } catch (const accel::ConfigError& e) {
+        const std::string what = e.what();
+        EXPECT_NE(what.find("parameter 'isa' = " + name), std::string::npos) << what;
+        EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+      }
+    }
+  }
+  EXPECT_GE(ran, 2);  // every x86-64 CPU has sse2; this one has more
+  // The oracle tries every level the knob knows.
+  const accel::StructureInfo* info = accel::find_structure("embree");
+  ASSERT_NE(info, nullptr);
+  std::vector<std::string> probed;
+  for (const nlohmann::json& k : info->knob_table)
+    if (k.at("name") == "isa") probed = k.at("probes").get<std::vector<std::string>>();
+  for (accel::Isa isa : accel::kIsas)
+    EXPECT_NE(std::find(probed.begin(), probed.end(), accel::isa_name(isa)), probed.end()) << accel::isa_name(isa);
+}
+
+TEST(Embree, IsaRefusalNamesTheLevelAndTheKnob) {
+  using accel::Isa;
+  const accel::IsaSet avx2_cpu = accel::isa_bit(Isa::Sse2) | accel::isa_bit(Isa::Sse42) |
+                                 accel::isa_bit(Isa::Avx) | accel::isa_bit(Isa::Avx2);
+  try {
+    accel::check_embree_isa(accel::EmbreeIsa::Avx512, avx2_cpu);
+    FAIL() << "expected ConfigError";
+  } catch (const accel::ConfigError& e) {
+    EXPECT_STREQ(e.what(),
+                 "embree: parameter 'isa' = avx512 needs AVX-512 F, CD, DQ, BW and VL, which this CPU lacks "
+                 "(it has sse2, sse4.2, avx, avx2)");
+  }
+  EXPECT_NO_THROW(accel::check_embree_isa(accel::EmbreeIsa::Avx2, avx2_cpu));
+  EXPECT_NO_THROW(accel::check_embree_isa(accel::EmbreeIsa::Cpu, avx2_cpu));
+  EXPECT_EQ(accel::resolve_embree_isa(accel::EmbreeIsa::Cpu, avx2_cpu), Isa::Avx2);
+  EXPECT_EQ(accel::resolve_embree_isa(accel::EmbreeIsa::Build, avx2_cpu), accel::build_isa());
+  EXPECT_EQ(accel::resolve_embree_packet(accel::EmbreePacket::Auto, Isa::Avx512), 16);
+  EXPECT_EQ(accel::resolve_embree_packet(accel::EmbreePacket::Auto, Isa::Avx2), 8);
+  EXPECT_EQ(accel::resolve_embree_packet(accel::EmbreePacket::Auto, Isa::Sse42), 4);
+  EXPECT_EQ(accel::resolve_embree_packet(accel::EmbreePacket::Lanes16, Isa::Sse2), 16);
+  // `--knob packet=8` hands the knob the number 8; it is the choice "8".
+  const Spheres sp = random_spheres(10, 19);
+  const accel::AnyAccel any = accel::make_accel("embree", {{"packet", 8}}, sp.boxes);
+  EXPECT_EQ(std::get<accel::EmbreeAccel>(any).packet_lanes(), 8);
+  EXPECT_EQ(accel::params_of(any).at("packet"), "8");
 }
 
 TEST(Embree, MemoryBudgetIsHonoured) {

@@ -11,6 +11,8 @@
 
 #include "tracer/render.h"
 
+#include "structure_configs.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -26,10 +28,9 @@ using tracer::Vec3;
 
 constexpr double kPi = std::numbers::pi;
 
-tracer::RenderResult render(const tracer::Scene& scene, const std::string& structure,
+tracer::RenderResult render(const tracer::Scene& scene, const test_support::StructureConfig& structure,
                             const json& knobs, int threads = 2, int w = 32, int h = 32) {
-  const auto boxes = scene.geometry.primitive_bounds();
-  const accel::AnyAccel a = accel::make_accel(structure, json::object(), boxes);
+  const accel::AnyAccel a = structure.build(scene.geometry.primitive_bounds());
   tracer::RenderOptions o;
   o.threads = threads;
   o.width = w;
@@ -37,10 +38,9 @@ tracer::RenderResult render(const tracer::Scene& scene, const std::string& struc
   return tracer::render(scene, a, o, photon::photon_integrator(), knobs);
 }
 
-photon::PhotonMaps maps_of(const tracer::Scene& scene, const std::string& structure,
+photon::PhotonMaps maps_of(const tracer::Scene& scene, const test_support::StructureConfig& structure,
                            const json& knobs, int threads) {
-  const auto boxes = scene.geometry.primitive_bounds();
-  const accel::AnyAccel a = accel::make_accel(structure, json::object(), boxes);
+  const accel::AnyAccel a = structure.build(scene.geometry.primitive_bounds());
   tracer::RenderOptions o;
   o.threads = threads;
   photon::PhotonParams p;
@@ -184,13 +184,12 @@ TEST(PhotonStructures, EveryStructureGivesNaivesMapsAndImage) {
   knobs["caustic_photons"] = 5000;
   const photon::PhotonMaps ref = maps_of(scene, "naive", knobs, 2);
   const tracer::RenderResult ref_image = render(scene, "naive", knobs, 2, 24, 24);
-  for (const std::string& name : accel::accel_names()) {
-    if (name == "naive" || !accel::accel_built(name)) continue;
-    SCOPED_TRACE(name);
-    const photon::PhotonMaps m = maps_of(scene, name, knobs, 2);
+  for (const test_support::StructureConfig& structure : test_support::structures_at_every_isa()) {
+    SCOPED_TRACE(structure.label());
+    const photon::PhotonMaps m = maps_of(scene, structure, knobs, 2);
     EXPECT_TRUE(same_photons(m.global_pass.photons, ref.global_pass.photons));
     EXPECT_TRUE(same_photons(m.caustic_pass.photons, ref.caustic_pass.photons));
-    const tracer::RenderResult image = render(scene, name, knobs, 2, 24, 24);
+    const tracer::RenderResult image = render(scene, structure, knobs, 2, 24, 24);
     EXPECT_EQ(image.image.content_hash(), ref_image.image.content_hash());
     EXPECT_EQ(image.rays, ref_image.rays);
   }

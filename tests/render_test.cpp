@@ -7,6 +7,7 @@
 #include "tracer/render_frame.h"
 
 #include "scenes_gen/generators.h"
+#include "structure_configs.h"
 
 #include <gtest/gtest.h>
 
@@ -20,11 +21,10 @@ namespace {
 
 using tracer::Vec3;
 
-tracer::RenderResult render_with(const tracer::Scene& scene, const std::string& name, int threads,
-                                 int w = 0, int h = 0, bool count = false,
+tracer::RenderResult render_with(const tracer::Scene& scene, const test_support::StructureConfig& structure,
+                                 int threads, int w = 0, int h = 0, bool count = false,
                                  const tracer::Integrator& integrator = tracer::whitted_integrator()) {
-  const auto boxes = scene.geometry.primitive_bounds();
-  const accel::AnyAccel accel = accel::make_accel(name, nlohmann::json::object(), boxes);
+  const accel::AnyAccel accel = structure.build(scene.geometry.primitive_bounds());
   tracer::RenderOptions options;
   options.threads = threads;
   options.width = w;
@@ -69,11 +69,11 @@ TEST(Render, ShadowPacketsGiveTheSingleRayImage) {
   for (const tracer::Integrator* integrator : {&tracer::spd_integrator(), &tracer::whitted_integrator()})
     for (const char* kind : {"refraction", "sphereflake"}) {
       const tracer::Scene scene = scenes_gen::generate(kind, gen);
-      for (const char* accel : {"naive", "bvh4", "bvh8", "kdtree", "embree"}) {
+      for (const test_support::StructureConfig& accel : test_support::structures_at_every_isa()) {
         const tracer::RenderResult packets = render_with(scene, accel, 2, 45, 33, false, *integrator);
         const tracer::RenderResult single = render_with(scene, accel, 2, 45, 33, true, *integrator);
-        EXPECT_EQ(packets.image.content_hash(), single.image.content_hash()) << kind << " " << accel;
-        EXPECT_TRUE(packets.rays == single.rays) << kind << " " << accel;
+        EXPECT_EQ(packets.image.content_hash(), single.image.content_hash()) << kind << " " << accel.label();
+        EXPECT_TRUE(packets.rays == single.rays) << kind << " " << accel.label();
         EXPECT_GT(single.rays.shadow, 300u) << kind;
       }
     }

@@ -2,6 +2,8 @@
 #include "tracer/scene_io.h"
 #include "tracer/render.h"
 
+#include "structure_configs.h"
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -25,10 +27,9 @@ Scene parse(const std::string& text) {
   return tracer::load_nff(in, "t.nff");
 }
 
-RenderResult render(const Scene& scene, const std::string& accel_name,
+RenderResult render(const Scene& scene, const test_support::StructureConfig& structure,
                     const tracer::RenderOptions& options = {}) {
-  const auto boxes = scene.geometry.primitive_bounds();
-  const accel::AnyAccel a = accel::make_accel(accel_name, nullptr, boxes);
+  const accel::AnyAccel a = structure.build(scene.geometry.primitive_bounds());
   return tracer::render(scene, a, options, tracer::spd_integrator());
 }
 
@@ -43,7 +44,7 @@ const std::string kAwaySquare = "p 4\n-3 -3 0\n-3 3 0\n3 3 0\n3 -3 0\n";    // n
 
 TEST(Spd, CornerRaysAndPixelAverages) {
   const Scene s = parse(view() + "l 0 0 10\nf 1 1 1 1 0 1 0 0\n" + kFacingSquare);
-  const RenderResult r = render(s, "naive");
+  const RenderResult r = render(s, {"naive"});
   EXPECT_EQ(r.image.width(), 4);
   EXPECT_EQ(r.image.height(), 4);
   EXPECT_EQ(r.rays.eye, 25u);
@@ -55,7 +56,7 @@ TEST(Spd, CornerRaysAndPixelAverages) {
 
 TEST(Spd, BackgroundSpawnsNothing) {
   const Scene s = parse(view() + "l 0 0 10\n");
-  const RenderResult r = render(s, "naive");
+  const RenderResult r = render(s, {"naive"});
   EXPECT_EQ(r.rays, (RayCounts{25, 0, 0, 0, 0}));
   for (const auto& p : r.image.pixels()) EXPECT_EQ(p, tracer::Color(0.1f, 0.2f, 0.3f));
 }
@@ -77,7 +78,7 @@ TEST(Spd, TreeDepthIsFive) {
   // Inside a mirror sphere whose inside is visible (negative radius), with the light inside:
   // every ray hits, so each eye ray makes 4 reflections (depths 2..5) and 5 shadow rays.
   const Scene s = parse(view() + "l 0 0 1\nf 1 1 1 0.5 0.5 10 0 0\ns 0 0 0 -20\n");
-  const RenderResult r = render(s, "naive");
+  const RenderResult r = render(s, {"naive"});
   EXPECT_EQ(r.rays, (RayCounts{25, 25, 100, 0, 125}));
 }
 
@@ -130,18 +131,18 @@ TEST(Spd, BadWindowIsRejected) {
   const Scene s = parse(view() + kFacingSquare);
   tracer::RenderOptions o;
   o.window = {2, 2, 6, 3};
-  EXPECT_THROW(render(s, "naive", o), std::invalid_argument);
+  EXPECT_THROW(render(s, {"naive"}, o), std::invalid_argument);
 }
 
-/// Every built structure against naive: same image hash and same ray counts.
+/// Every built structure (Embree at every ISA the CPU has) against naive: same image hash and
+/// same ray counts.
 void expect_structures_match_naive(const Scene& scene, const tracer::RenderOptions& options) {
-  const RenderResult ref = render(scene, "naive", options);
+  const RenderResult ref = render(scene, {"naive"}, options);
   EXPECT_GT(ref.rays.eye_hits, 0u);
-  for (const std::string& name : accel::accel_names()) {
-    if (name == "naive" || !accel::accel_built(name)) continue;
-    const RenderResult r = render(scene, name, options);
-    EXPECT_EQ(r.image.content_hash(), ref.image.content_hash()) << name;
-    EXPECT_EQ(r.rays, ref.rays) << name;
+  for (const test_support::StructureConfig& structure : test_support::structures_at_every_isa()) {
+    const RenderResult r = render(scene, structure, options);
+    EXPECT_EQ(r.image.content_hash(), ref.image.content_hash()) << structure.label();
+    EXPECT_EQ(r.rays, ref.rays) << structure.label();
   }
 }
 
