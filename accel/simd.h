@@ -2,7 +2,7 @@
 // The SIMD vocabulary of the structures, on xsimd (Debian's libxsimd-dev): fixed-width float
 // batches picked from the instruction sets this build targets, and a lane mask as bits. Every
 // SIMD kernel is written once against these names and compiles for AVX-512, AVX2 and plain
-// SSE2 (ACCELBENCH_NATIVE=OFF) alike.
+// SSE2 alike (ACCELBENCH_ISA).
 
 #include <xsimd/xsimd.hpp>
 
