@@ -25,6 +25,7 @@ const std::vector<StructureInfo>& structures() {
         info.missing = E::kMissing;
       }
       info.selector = SelectorEntry<E>;
+      if constexpr (requires { E::kExact; }) info.exact = E::kExact;
       const auto& knobs = E::Params::knobs();
       info.knobs = knobs.names();
       info.knob_table = knobs.describe();
@@ -158,6 +159,7 @@ nlohmann::json registry_json() {
     out.push_back({{"name", s.name},
                    {"summary", s.summary},
                    {"selector", s.selector},
+                   {"exact", s.exact},
                    {"knobs", s.knob_table}});
   return out;
 }

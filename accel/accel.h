@@ -41,6 +41,9 @@ struct StructureInfo {
   bool built = true;              ///< False when compiled out of this build (see missing).
   std::string missing;            ///< Why it is not built and how to get it; "" when built.
   bool selector = false;          ///< Chooses among the structures (auto) instead of being one.
+  /// Its hits equal naive's bit for bit (our primitive routine); false for a peer whose own
+  /// primitive routine answers (embree_points), checked within a tolerance instead.
+  bool exact = true;
   std::vector<std::string> knobs; ///< Knob names in display order.
   nlohmann::json knob_table;      ///< KnobTable::describe() of its parameter struct.
   std::string knob_markdown;      ///< KnobTable::markdown() of its parameter struct.

@@ -91,9 +91,9 @@ void occluded_fn(const RTCOccludedFunctionNArguments* args) {
 }  // namespace
 }  // namespace embree_detail
 
-EmbreeAccel::EmbreeAccel(std::span<const Aabb> boxes, const EmbreeParams& params,
-                         const BuildLimits& limits)
-    : params_(params), monitor_(std::make_unique<embree_detail::MemoryMonitor>()) {
+EmbreeAccel::EmbreeAccel(std::span<const Aabb> boxes, const EmbreeParams& params, const BuildLimits& limits,
+                         const char* owner)
+    : params_(params), owner_(owner), monitor_(std::make_unique<embree_detail::MemoryMonitor>()) {
   EmbreeParams::knobs().validate(params_);  // the JSON knobs' checks, for structs built in code
   const auto start = std::chrono::steady_clock::now();
   const std::uint64_t budget = memory_budget_bytes(limits);
@@ -102,22 +102,17 @@ EmbreeAccel::EmbreeAccel(std::span<const Aabb> boxes, const EmbreeParams& params
                          : std::int64_t(budget);
 
   const IsaSet cpu = cpu_isas();
-  check_embree_isa(params_.isa, cpu);
+  check_embree_isa(params_.isa, cpu, owner_);
   isa_ = resolve_embree_isa(params_.isa, cpu);
   packet_lanes_ = resolve_embree_packet(params_.packet, isa_);
   std::string config = "isa=" + std::string(isa_name(isa_));
   if (params_.build_threads > 0) config += ",threads=" + std::to_string(params_.build_threads);
   device_ = embree_detail::Device(rtcNewDevice(config.c_str()));
-  if (!device_.get()) throw ConfigError("embree: rtcNewDevice failed (config '" + config + "')");
+  if (!device_.get()) throw ConfigError(std::string(owner_) + ": rtcNewDevice failed (config '" + config + "')");
   rtcSetDeviceErrorFunction(device_.get(), embree_detail::on_error, monitor_.get());
   rtcSetDeviceMemoryMonitorFunction(device_.get(), embree_detail::on_memory, monitor_.get());
 
-  scene_ = embree_detail::Scene(rtcNewScene(device_.get()));
-  rtcSetSceneBuildQuality(scene_.get(), params_.build_quality == EmbreeQuality::High
-                                            ? RTC_BUILD_QUALITY_HIGH
-                                            : RTC_BUILD_QUALITY_MEDIUM);
-  rtcSetSceneFlags(scene_.get(), params_.robust ? RTC_SCENE_FLAG_ROBUST : RTC_SCENE_FLAG_NONE);
-
+  scene_ = new_scene();
   embree_detail::BoxesView view{boxes.data()};
   if (!boxes.empty()) {
     RTCGeometry geom = rtcNewGeometry(device_.get(), RTC_GEOMETRY_TYPE_USER);
@@ -130,18 +125,37 @@ EmbreeAccel::EmbreeAccel(std::span<const Aabb> boxes, const EmbreeParams& params
     rtcAttachGeometry(scene_.get(), geom);
     rtcReleaseGeometry(geom);
   }
-  rtcCommitScene(scene_.get());
-  if (monitor_->over_budget)
-    throw ConfigError("embree: the build needs more than the memory budget of " +
-                      std::to_string(budget) + " bytes (raise --max-memory)");
-  if (rtcGetDeviceError(device_.get()) != RTC_ERROR_NONE || !monitor_->error.empty())
-    throw ConfigError("embree: build failed: " + monitor_->error);
+  commit(scene_);
 
   stats_.primitives = boxes.size();
   stats_.prim_refs = boxes.size();
   stats_.memory_bytes = std::uint64_t(monitor_->peak);
   stats_.build_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+embree_detail::Scene EmbreeAccel::new_scene() const {
+  embree_detail::Scene scene(rtcNewScene(device_.get()));
+  rtcSetSceneBuildQuality(scene.get(), params_.build_quality == EmbreeQuality::High ? RTC_BUILD_QUALITY_HIGH
+                                                                                    : RTC_BUILD_QUALITY_MEDIUM);
+  rtcSetSceneFlags(scene.get(), params_.robust ? RTC_SCENE_FLAG_ROBUST : RTC_SCENE_FLAG_NONE);
+  return scene;
+}
+
+void EmbreeAccel::commit(const embree_detail::Scene& scene) const {
+  rtcCommitScene(scene.get());
+  if (monitor_->over_budget)
+    throw ConfigError(std::string(owner_) + ": the build needs more than the memory budget of " +
+                      std::to_string(monitor_->budget) + " bytes (raise --max-memory)");
+  if (rtcGetDeviceError(device_.get()) != RTC_ERROR_NONE || !monitor_->error.empty())
+    throw ConfigError(std::string(owner_) + ": build failed: " + monitor_->error);
+}
+
+std::uint64_t EmbreeAccel::allocated_bytes() const { return std::uint64_t(std::max<std::int64_t>(monitor_->bytes, 0)); }
+
+void EmbreeAccel::replace_scene(embree_detail::Scene scene) {
+  scene_ = std::move(scene);
+  stats_.memory_bytes = allocated_bytes();
 }
 
 EmbreeAccel::EmbreeAccel(EmbreeAccel&&) noexcept = default;
@@ -152,6 +166,7 @@ EmbreeAccel& EmbreeAccel::operator=(EmbreeAccel&& o) noexcept {
   device_ = std::move(o.device_);
   monitor_ = std::move(o.monitor_);
   params_ = o.params_;
+  owner_ = o.owner_;
   isa_ = o.isa_;
   packet_lanes_ = o.packet_lanes_;
   stats_ = o.stats_;

@@ -125,20 +125,52 @@ inline constexpr Ray kUnusedLane{Vec3(0.0f), 1.0f, Vec3(0.0f, 0.0f, 1.0f), 0.0f}
 /// Lane i of an Embree packet of rays (RTCRay4/8/16) from `ray`. The id is the lane: Embree may
 /// hand the callbacks fewer lanes than the packet, or reordered copies, so they find the
 /// caller's ray by its id, never by their own lane index.
-template <class RayK>
+/// How a ray's interval reaches Embree: widened by the slack of interval_slack.h where our
+/// callbacks decide the hits, or, where Embree's own primitives do (embree_points), made to mean
+/// what it means to our routines: tmin excluded (Embree includes tnear), and for any-hit
+/// queries tmax excluded too (Embree includes tfar).
+enum class Interval : std::uint8_t { Widened, Closest, AnyHit };
+
+inline float embree_tnear(const Ray& ray, Interval mode) {
+  return mode == Interval::Widened ? widen_down(ray.tmin) : std::nextafter(ray.tmin, kInfinity);
+}
+inline float embree_tfar(const Ray& ray, Interval mode) {
+  if (mode == Interval::Widened) return widen_up(ray.tmax);
+  if (mode == Interval::AnyHit && ray.tmax < kInfinity) return std::nextafter(ray.tmax, -kInfinity);
+  return ray.tmax;
+}
+
+template <Interval Mode = Interval::Widened, class RayK>
 void fill_lane(RayK& r, std::size_t i, const Ray& ray) {
   r.org_x[i] = ray.org.x;
   r.org_y[i] = ray.org.y;
   r.org_z[i] = ray.org.z;
-  r.tnear[i] = widen_down(ray.tmin);
+  r.tnear[i] = embree_tnear(ray, Mode);
   r.dir_x[i] = ray.dir.x;
   r.dir_y[i] = ray.dir.y;
   r.dir_z[i] = ray.dir.z;
   r.time[i] = 0.0f;
-  r.tfar[i] = widen_up(ray.tmax);
+  r.tfar[i] = embree_tfar(ray, Mode);
   r.mask[i] = 0xffffffffu;
   r.id[i] = unsigned(i);
   r.flags[i] = 0;
+}
+
+/// A single Embree ray from `ray` (see fill_lane).
+template <Interval Mode = Interval::Widened>
+void fill_ray(RTCRay& r, const Ray& ray) {
+  r.org_x = ray.org.x;
+  r.org_y = ray.org.y;
+  r.org_z = ray.org.z;
+  r.tnear = embree_tnear(ray, Mode);
+  r.dir_x = ray.dir.x;
+  r.dir_y = ray.dir.y;
+  r.dir_z = ray.dir.z;
+  r.time = 0.0f;
+  r.tfar = embree_tfar(ray, Mode);
+  r.mask = 0xffffffffu;
+  r.id = 0;
+  r.flags = 0;
 }
 
 struct MemoryMonitor;
@@ -153,9 +185,10 @@ class EmbreeAccel {
       "Embree 3 user geometry calling our primitive routine (the peer we measure against)";
 
   EmbreeAccel() = default;
-  /// Builds an Embree scene over `boxes` (primitive id = index). Throws ConfigError when Embree
-  /// fails or its allocations would pass the memory budget of `limits`.
-  EmbreeAccel(std::span<const Aabb> boxes, const EmbreeParams& params, const BuildLimits& limits);
+  /// Builds an Embree scene over `boxes` (primitive id = index). Throws ConfigError, starting
+  /// with `owner`, when Embree fails or its allocations would pass the memory budget of `limits`.
+  EmbreeAccel(std::span<const Aabb> boxes, const EmbreeParams& params, const BuildLimits& limits,
+              const char* owner = kName);
   EmbreeAccel(EmbreeAccel&&) noexcept;
   EmbreeAccel& operator=(EmbreeAccel&&) noexcept;
   ~EmbreeAccel();
@@ -166,7 +199,7 @@ class EmbreeAccel {
     if constexpr (Count) counters->rays++;
     embree_detail::QueryContext q = context<Count>(ray, leaf_fn, counters);
     RTCRayHit rh;
-    fill(rh.ray, ray);
+    embree_detail::fill_ray(rh.ray, ray);
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
     rtcIntersect1(scene_.get(), &q.rtc, &rh);
@@ -191,7 +224,7 @@ class EmbreeAccel {
     Ray ray = ray_in;
     embree_detail::QueryContext q = context<Count>(ray, leaf_fn, counters);
     RTCRay r;
-    fill(r, ray);
+    embree_detail::fill_ray(r, ray);
     rtcOccluded1(scene_.get(), &q.rtc, &r);
     return r.tfar == -kInfinity;
   }
@@ -210,6 +243,17 @@ class EmbreeAccel {
   }
 
   const EmbreeParams& params() const { return params_; }
+  /// For a peer built on this one (embree_points): the device, a new scene with this one's
+  /// build settings, a commit that throws ConfigError on Embree's errors and on the memory
+  /// budget, the bytes Embree holds now, and swapping the scene queries use for another.
+  RTCDevice device() const { return device_.get(); }
+  embree_detail::Scene new_scene() const;
+  void commit(const embree_detail::Scene& scene) const;
+  std::uint64_t allocated_bytes() const;
+  void replace_scene(embree_detail::Scene scene);
+  RTCScene scene() const { return scene_.get(); }
+  BuildStats& mutable_stats() { return stats_; }
+
   /// The instruction set Embree's kernels run at.
   Isa isa() const { return isa_; }
   /// Rays per packet query.
@@ -296,22 +340,8 @@ class EmbreeAccel {
       q.test = &embree_detail::call_leaf<Count, L>;
     return q;
   }
-  static void fill(RTCRay& r, const Ray& ray) {
-    r.org_x = ray.org.x;
-    r.org_y = ray.org.y;
-    r.org_z = ray.org.z;
-    r.tnear = widen_down(ray.tmin);
-    r.dir_x = ray.dir.x;
-    r.dir_y = ray.dir.y;
-    r.dir_z = ray.dir.z;
-    r.time = 0.0f;
-    r.tfar = widen_up(ray.tmax);
-    r.mask = 0xffffffffu;
-    r.id = 0;
-    r.flags = 0;
-  }
-
   EmbreeParams params_;
+  const char* owner_ = kName;  ///< Starts every error message.
   Isa isa_ = Isa::Sse2;    ///< The level Embree's kernels run at (params_.isa resolved).
   int packet_lanes_ = 16;  ///< Rays per packet query (params_.packet resolved).
   // Declared before the scene so that it is released after it (members die in reverse order).

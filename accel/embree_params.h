@@ -1,6 +1,6 @@
 #pragma once
-// Knobs of the Embree adapter (embree_accel.h). Compiled whether or not Embree 3 was found, so
-// that the knob reference and the registry know them in every build.
+// Knobs of the Embree peers (embree_accel.h, embree_points.h). Compiled whether or not Embree 3
+// was found, so that the knob reference and the registry know them in every build.
 
 #include "isa.h"
 #include "knob_table.h"
@@ -49,12 +49,17 @@ struct EmbreeParams {
   static const KnobTable<EmbreeParams>& knobs();
 };
 
+/// Knobs of embree_points: the same as the user-geometry adapter's, under its own name.
+struct EmbreePointsParams : EmbreeParams {
+  static const KnobTable<EmbreePointsParams>& knobs();
+};
+
 /// The level `isa` stands for on a CPU with the levels `cpu` (Build and Cpu resolved).
 Isa resolve_embree_isa(EmbreeIsa isa, IsaSet cpu);
 /// Rays per packet query for `packet` at Embree's level `isa`: 4, 8 or 16.
 int resolve_embree_packet(EmbreePacket packet, Isa isa);
-/// Throws ConfigError, one line naming the level and the knob, when `isa` asks for a level the
-/// CPU with the levels `cpu` lacks.
-void check_embree_isa(EmbreeIsa isa, IsaSet cpu);
+/// Throws ConfigError "<owner>: parameter 'isa' = ...", one line naming the level and the knob,
+/// when `isa` asks for a level the CPU with the levels `cpu` lacks.
+void check_embree_isa(EmbreeIsa isa, IsaSet cpu, const char* owner = "embree");
 
 }  // namespace accel

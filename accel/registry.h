@@ -7,6 +7,7 @@
 #include "auto_select.h"
 #include "bvh.h"
 #include "embree_accel.h"
+#include "embree_points.h"
 #include "kdtree.h"
 #include "naive.h"
 #include "octree.h"
@@ -23,7 +24,7 @@ struct TypeList {};
 
 /// Every registered entry, in display order: the structures, a structure compiled out of this
 /// build (it has kMissing), and selectors (kSelector) that pick one of the structures.
-using Registry = TypeList<Naive, Octree, KdTree, Bvh, Bvh4, Bvh8, EmbreeAccel, AutoSelect>;
+using Registry = TypeList<Naive, Octree, KdTree, Bvh, Bvh4, Bvh8, EmbreeAccel, EmbreePoints, AutoSelect>;
 
 /// An entry that chooses among the structures instead of being one (`auto`).
 template <class E>

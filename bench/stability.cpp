@@ -157,8 +157,9 @@ std::vector<CheckedStructure> parse_checked_structures(const std::string& list, 
 
 std::string default_structures() {
   std::string out;
-  for (const std::string& n : accel::accel_names()) {
-    if (n == "naive" || !accel::accel_built(n)) continue;
+  for (const accel::StructureInfo& info : accel::structures()) {
+    const std::string& n = info.name;
+    if (n == "naive" || !info.built || !info.exact) continue;  // every structure must equal naive
     out += (out.empty() ? "" : ",") + n;
     if (n == "octree") out += ",octree:placement=every_level";
     if (n == "kdtree") out += ",kdtree:split=sah";
