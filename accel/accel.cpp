@@ -26,6 +26,7 @@ const std::vector<StructureInfo>& structures() {
       }
       info.selector = SelectorEntry<E>;
       if constexpr (requires { E::kExact; }) info.exact = E::kExact;
+      if constexpr (requires { E::kPeer; }) info.peer = E::kPeer;
       const auto& knobs = E::Params::knobs();
       info.knobs = knobs.names();
       info.knob_table = knobs.describe();
@@ -160,6 +161,7 @@ nlohmann::json registry_json() {
                    {"summary", s.summary},
                    {"selector", s.selector},
                    {"exact", s.exact},
+                   {"peer", s.peer},
                    {"knobs", s.knob_table}});
   return out;
 }

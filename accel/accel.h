@@ -44,6 +44,8 @@ struct StructureInfo {
   /// Its hits equal naive's bit for bit (our primitive routine); false for a peer whose own
   /// primitive routine answers (embree_points), checked within a tolerance instead.
   bool exact = true;
+  /// A peer we measure against (Embree), not one of ours: benchmarks pair our renders with it.
+  bool peer = false;
   std::vector<std::string> knobs; ///< Knob names in display order.
   nlohmann::json knob_table;      ///< KnobTable::describe() of its parameter struct.
   std::string knob_markdown;      ///< KnobTable::markdown() of its parameter struct.

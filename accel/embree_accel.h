@@ -183,6 +183,8 @@ class EmbreeAccel {
   static constexpr const char* kName = "embree";
   static constexpr const char* kSummary =
       "Embree 3 user geometry calling our primitive routine (the peer we measure against)";
+  /// The peer we measure against, not one of ours.
+  static constexpr bool kPeer = true;
 
   EmbreeAccel() = default;
   /// Builds an Embree scene over `boxes` (primitive id = index). Throws ConfigError, starting
@@ -363,6 +365,8 @@ struct EmbreeAccel {
   static constexpr const char* kName = "embree";
   static constexpr const char* kSummary =
       "Embree 3 user geometry calling our primitive routine (the peer we measure against)";
+  /// The peer we measure against, not one of ours.
+  static constexpr bool kPeer = true;
   /// Why it is missing and what to do, for make_accel's error.
   static constexpr const char* kMissing = "not built (Embree 3 was not found; run scripts/setup)";
 };

@@ -23,6 +23,8 @@ class EmbreePoints {
   static constexpr const char* kSummary =
       "Embree 3's own spheres (RTC_GEOMETRY_TYPE_SPHERE_POINT) and its sphere routine: a peer checked "
       "within a tolerance";
+  /// The peer we measure against, not one of ours.
+  static constexpr bool kPeer = true;
   /// Its hits come from Embree's sphere routine, not ours: equal to naive within a tolerance.
   static constexpr bool kExact = false;
 
@@ -171,6 +173,8 @@ struct EmbreePoints {
   static constexpr const char* kSummary =
       "Embree 3's own spheres (RTC_GEOMETRY_TYPE_SPHERE_POINT) and its sphere routine: a peer checked "
       "within a tolerance";
+  /// The peer we measure against, not one of ours.
+  static constexpr bool kPeer = true;
   static constexpr bool kExact = false;
   static constexpr const char* kMissing = "not built (Embree 3 was not found; run scripts/setup)";
 };

@@ -54,8 +54,8 @@ class LeafBoxes {
       const Batch o(org[a]);
       const Batch t_near = (Batch::load_unaligned(planes_[near_row[a]].data() + at) - o) * Batch(inv_dir[a]);
       const Batch t_far = (Batch::load_unaligned(planes_[near_row[a] ^ 1].data() + at) - o) * Batch(inv_far[a]);
-      t0 = xsimd::select(t_near > t0, t_near, t0);
-      t1 = xsimd::select(t_far < t1, t_far, t1);
+      t0 = simd::max_or_second(t_near, t0);
+      t1 = simd::min_or_second(t_far, t1);
     }
     if (tn) t0.store_unaligned(tn);
     return simd::mask_bits<Batch>(t0 <= t1);

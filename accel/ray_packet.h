@@ -41,6 +41,7 @@ struct RayPacket {
   Mask neg[3];        ///< Lanes whose direction component has its sign bit set (RaySetup::neg).
   std::uint32_t valid = 0;  ///< Bit i set when lane i holds a ray.
 
+  RayPacket() = default;  ///< Uninitialised; to be assigned or constructed over.
   /// Loads rays[0, n) with 0 < n <= kLanes; lanes past n repeat ray 0 and are not valid.
   explicit RayPacket(std::span<const Ray> rays) {
     alignas(64) float f[7][kLanes];
@@ -78,8 +79,8 @@ void box_interval(const RayPacket<Batch>& p, const float lo[3], const float hi[3
     const Batch l(lo[a]), h(hi[a]);
     const Batch t_near = (xsimd::select(p.neg[a], h, l) - p.org[a]) * p.inv_dir[a];
     const Batch t_far = (xsimd::select(p.neg[a], l, h) - p.org[a]) * p.inv_far[a];
-    t0 = xsimd::select(t_near > t0, t_near, t0);
-    t1 = xsimd::select(t_far < t1, t_far, t1);
+    t0 = simd::max_or_second(t_near, t0);
+    t1 = simd::min_or_second(t_far, t1);
   }
 }
 

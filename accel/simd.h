@@ -10,6 +10,10 @@
 #include <cstdint>
 #include <type_traits>
 
+#if !defined(__x86_64__)
+#error "accel/simd.h relies on x86's MAXPS and MINPS semantics (max_or_second)"
+#endif
+
 namespace accel::simd {
 
 /// A batch of exactly N floats on the best instruction set this build has for that width, or
@@ -82,6 +86,20 @@ inline float reduce_min(const Batch& b) {
 template <class Batch>
 inline float reduce_max(const Batch& b) {
   return reduce_lanes<true>(b);
+}
+
+/// `a > b ? a : b` lane by lane, so a NaN in `a` (a 0 * inf slab distance) gives `b`, and
+/// (-0, +0) gives +0: exactly what x86's MAXPS computes, which xsimd::max(a, b) is on SSE2, AVX and
+/// AVX-512. One instruction where the select takes a compare and a blend.
+template <class Batch>
+[[gnu::always_inline]] inline Batch max_or_second(const Batch& a, const Batch& b) {
+  return xsimd::max(a, b);
+}
+
+/// `a < b ? a : b` lane by lane (x86's MINPS; see max_or_second).
+template <class Batch>
+[[gnu::always_inline]] inline Batch min_or_second(const Batch& a, const Batch& b) {
+  return xsimd::min(a, b);
 }
 
 /// Index of the lowest set bit of a non-zero mask.

@@ -33,7 +33,7 @@ inline float intersect_sphere(const Vec3& center, float radius, const Ray& ray) 
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 template <class Batch>
-inline Batch sphere_root_lanes(const Batch& ox, const Batch& oy, const Batch& oz, const Batch& dx,
+[[gnu::always_inline]] inline Batch sphere_root_lanes(const Batch& ox, const Batch& oy, const Batch& oz, const Batch& dx,
                                const Batch& dy, const Batch& dz, const Batch& a, const Batch& tmin,
                                const Batch& cx, const Batch& cy, const Batch& cz, const Batch& r) {
   const Batch fx = ox - cx, fy = oy - cy, fz = oz - cz;
@@ -60,7 +60,7 @@ inline Batch sphere_root_lanes(const Batch& ox, const Batch& oy, const Batch& oz
 /// intersect_sphere on Batch::size spheres at once (centres cx, cy, cz, radii r), for one ray.
 /// Lane i equals intersect_sphere(center_i, r_i, ray) bit for bit.
 template <class Batch>
-inline Batch intersect_spheres(const Batch& cx, const Batch& cy, const Batch& cz, const Batch& r,
+[[gnu::always_inline]] inline Batch intersect_spheres(const Batch& cx, const Batch& cy, const Batch& cz, const Batch& r,
                                const Ray& ray) {
   const float a = glm::dot(ray.dir, ray.dir);
   return sphere_root_lanes(Batch(ray.org.x), Batch(ray.org.y), Batch(ray.org.z), Batch(ray.dir.x),

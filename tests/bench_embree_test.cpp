@@ -24,13 +24,14 @@ struct ScriptRun {
   std::vector<std::string> filters;  // one per call of the fake bench_trace
 };
 
-ScriptRun run_bench_embree(const std::string& mode, const std::string& extra = "") {
+ScriptRun run_bench_embree(const std::string& mode, const std::string& extra = "", const std::string& env = "") {
   const fs::path dir = fs::temp_directory_path() / ("accelbench_bench_embree_" + std::to_string(getpid()) + "_" + mode);
   fs::remove_all(dir);
   fs::create_directories(dir);
-  const std::string cmd = "FAKE_BENCH_MODE=" + mode + " FAKE_BENCH_LOG=" + (dir / "filters.txt").string() + " " +
+  const std::string cmd = env + " FAKE_BENCH_MODE=" + mode + " FAKE_BENCH_LOG=" + (dir / "filters.txt").string() + " " +
                           ACCELBENCH_PYTHON " " ACCELBENCH_SOURCE_DIR "/scripts/bench_embree --bench-trace " +
-                          ACCELBENCH_SOURCE_DIR "/tests/data/fake_bench_trace.py --out " + (dir / "out").string() +
+                          ACCELBENCH_SOURCE_DIR "/tests/data/fake_bench_trace.py --accelbench " +
+                          ACCELBENCH_SOURCE_DIR "/tests/data/fake_accelbench.py --out " + (dir / "out").string() +
                           " " + extra + " > " + (dir / "log.txt").string() + " 2>&1";
   ScriptRun r;
   const int st = std::system(cmd.c_str());
@@ -57,15 +58,22 @@ TEST(BenchEmbree, ANoisyWorkloadIsMeasuredAgainAndItsQuietPassIsTheOneReported) 
   ASSERT_EQ(r.status, 0) << r.output;
   ASSERT_EQ(r.filters.size(), 2u) << r.output;
   // Only the workload that was noisy (gears_sf4's renders, all of them) is measured again.
-  EXPECT_EQ(r.filters[1], "^Render/gears_sf4/(bvh4|bvh8|embree|kdtree_sah|auto)/|^RenderVsEmbree/gears_sf4/(bvh8|auto)/");
-  // 240 / 220 from pass 2, not 240 / 300 from pass 1.
+  EXPECT_EQ(r.filters[1],
+            "^Render/gears_sf4/(bvh4|bvh8|kdtree_sah|auto|embree|embree_points)/|^RenderPair/gears_sf4/bvh8/vs_");
+  // 240 / 220 from pass 2, not 240 / 300 from pass 1; the faster Embree is `embree` there.
   const std::string gears = line_with(r.output, "| SPD gears_sf4 256×256 |");
-  EXPECT_NE(gears.find("| 220 | 240 | 1.091 | 1.060 | 1.000 | 1.0%, 2 |"), std::string::npos) << gears;
+  EXPECT_NE(gears.find("| bvh8 220 ms | 220 | 240 | 242 | 1.091 | 1.060 vs embree | 1.0%, 2 |"), std::string::npos)
+      << gears;
   EXPECT_NE(gears.find(": met |"), std::string::npos) << gears;
+  // Camera rays: ours is bvh8 (bvh4 is slower), the faster Embree is embree_points (62 ms).
   const std::string camera = line_with(r.output, "| camera rays, one at a time |");
-  EXPECT_NE(camera.find("| 50 | 65 | 1.300 |"), std::string::npos) << camera;
+  EXPECT_NE(camera.find("| bvh8 50 ms | 50 | 65 | 62 | 1.240 |"), std::string::npos) << camera;
   EXPECT_NE(camera.find(", 1 | ≥ 1.2: met |"), std::string::npos) << camera;
   EXPECT_NE(r.output.find("41.0 B/sphere: met"), std::string::npos) << r.output;
+  // Two threads: 200 / 104 ms in every pair.
+  const std::string threads = line_with(r.output, "| two threads over one");
+  EXPECT_NE(threads.find("| 1.923 (pairs 1.92-1.92) |"), std::string::npos) << threads;
+  EXPECT_NE(threads.find("≥ 1.9, same image: met |"), std::string::npos) << threads;
   EXPECT_NE(r.output.find("bench_embree: every target met"), std::string::npos) << r.output;
 }
 
@@ -74,10 +82,18 @@ TEST(BenchEmbree, AWorkloadNoisyInEveryPassIsMarkedAndItsMissedTargetFails) {
   ASSERT_EQ(r.status, 1) << r.output;
   EXPECT_EQ(r.filters.size(), 3u) << r.output;
   const std::string gears = line_with(r.output, "| SPD gears_sf4 256×256 |");
-  EXPECT_NE(gears.find("| 300 | 240 | 0.800 |"), std::string::npos) << gears;
+  EXPECT_NE(gears.find("| bvh8 300 ms | 300 | 240 | 242 | 0.800 |"), std::string::npos) << gears;
   EXPECT_NE(gears.find("36.4%, 1 (noisy) |"), std::string::npos) << gears;
-  EXPECT_NE(gears.find(": NOT MET |"), std::string::npos) << gears;
+  EXPECT_NE(gears.find(": NOT MET (20% short) |"), std::string::npos) << gears;
   EXPECT_NE(r.output.find("bench_embree: targets not met: SPD gears_sf4 256×256\n"), std::string::npos) << r.output;
+}
+
+TEST(BenchEmbree, TwoThreadsShortOfTheirTargetFail) {
+  const ScriptRun r = run_bench_embree("spell", "", "FAKE_TWO_THREAD_MS=110");
+  ASSERT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(line_with(r.output, "| two threads over one").find("| 1.818 (pairs 1.82-1.82) |"), std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("bench_embree: targets not met: two threads\n"), std::string::npos) << r.output;
 }
 
 TEST(BenchEmbree, AFailedBenchTraceStopsTheRunWithItsMessage) {

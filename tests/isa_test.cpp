@@ -9,6 +9,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
+#include <cstdint>
+#include <limits>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -54,6 +57,24 @@ TEST(Isa, SimdKernelsRunAtTheBuildLevelsWidth) {
   EXPECT_EQ(int(accel::simd::FloatLeaf::size), std::min(8, accel::isa_lanes(accel::build_isa())));
   const std::string configured = ACCELBENCH_ISA_NAME;
   if (configured != "native") EXPECT_EQ(accel::isa_name(accel::build_isa()), configured);
+}
+
+// The node and box tests take max_or_second / min_or_second for the select they replace: equal
+// bit for bit on NaN (a 0 * inf slab distance), signed zeros and infinities.
+TEST(Simd, MaxOrSecondIsTheSelectItReplaces) {
+  using B = accel::simd::FloatPacket;
+  const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
+  const float values[] = {nan, -inf, -1.5f, -0.0f, 0.0f, 1e-40f, 2.0f, inf};
+  for (float x : values)
+    for (float y : values) {
+      const B a(x), b(y);
+      const B want_max = xsimd::select(a > b, a, b), want_min = xsimd::select(a < b, a, b);
+      const B got_max = accel::simd::max_or_second(a, b), got_min = accel::simd::min_or_second(a, b);
+      EXPECT_EQ(std::bit_cast<std::uint32_t>(got_max.get(0)), std::bit_cast<std::uint32_t>(want_max.get(0)))
+          << x << " " << y;
+      EXPECT_EQ(std::bit_cast<std::uint32_t>(got_min.get(0)), std::bit_cast<std::uint32_t>(want_min.get(0)))
+          << x << " " << y;
+    }
 }
 
 }  // namespace

@@ -24,6 +24,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <new>
 #include <span>
 #include <stdexcept>
 #include <string>
@@ -110,30 +111,42 @@ class WideBvh {
   }
 
   /// Closest hit for a packet of rays (coherent rays: a tile of camera rays), each ray getting
-  /// the hit intersect() gives it. Groups of up to simd::FloatPacket::size rays whose
-  /// directions share their signs go down the tree as one frustum: per axis the range of their
-  /// origins and inverse directions bounds every ray's slab distances (IEEE rounding is
-  /// monotone), so a child is entered when the bounds say any ray may enter it, and leaf spheres
-  /// are tested against every ray of the group in one SIMD step. Other groups go ray by ray.
+  /// the hit intersect() gives it. Groups of up to kGroup (16) rays whose directions share their
+  /// signs go down the tree as one frustum: per axis the range of their origins and inverse
+  /// directions bounds every ray's slab distances (IEEE rounding is monotone), so a child is
+  /// entered when the bounds say any ray may enter it, and leaf spheres are tested against the
+  /// group's rays simd::FloatPacket::size at a time. A group whose rays do not share their signs
+  /// tries the same per packet of simd::FloatPacket::size rays, and a packet that fails too goes
+  /// ray by ray. With fewer lanes than 16 (AVX2: 8, SSE2: 4) one walk serves several packets.
   /// leaf_fn(lane, id, ray) and leaf_fn.accept(lane, id, t, ray) take the ray's index in `rays`.
   template <bool Count = false, class LeafFn>
   void intersect_packet(std::span<Ray> rays, LeafFn&& leaf_fn, TraversalCounters* counters = nullptr) const {
     using L = std::remove_reference_t<LeafFn>;
-    for (std::size_t base = 0; base < rays.size(); base += kPacket) {
-      const std::span<Ray> group = rays.subspan(base, std::min(kPacket, rays.size() - base));
+    for (std::size_t base = 0; base < rays.size(); base += kGroup) {
+      const std::span<Ray> group = rays.subspan(base, std::min(kGroup, rays.size() - base));
       if constexpr (Count) counters->rays += group.size();
       if (nodes_.empty()) continue;
-      const RayPacket<PacketBatch> packet(group);
+      const PacketGroup packets(group);
       PacketFrustum frustum;
-      if (frustum.bound(packet)) {
-        PacketQuery<Count, L> q{*this, group, packet, frustum, base, leaf_fn, counters};
+      if (packets.bound(frustum)) {
+        PacketQuery<Count, L> q{*this, group, packets, frustum, base, leaf_fn, counters};
         closest<Count>(q, counters);
         continue;
       }
-      for (std::size_t i = 0; i < group.size(); ++i) {
-        LaneLeaf<L> lane{&leaf_fn, base + i};
-        SingleQuery<Count, LaneLeaf<L>> q{*this, group[i], NodeRay(RaySetup(group[i])), lane, counters};
-        closest<Count>(q, counters);
+      for (std::size_t g = 0; g < packets.count; ++g) {
+        const std::size_t first = g * kPacket;
+        const std::span<Ray> part = group.subspan(first, std::min(kPacket, group.size() - first));
+        const PacketGroup one(part);
+        if (packets.count > 1 && one.bound(frustum)) {
+          PacketQuery<Count, L> q{*this, part, one, frustum, base + first, leaf_fn, counters};
+          closest<Count>(q, counters);
+          continue;
+        }
+        for (std::size_t i = 0; i < part.size(); ++i) {
+          LaneLeaf<L> lane{&leaf_fn, base + first + i};
+          SingleQuery<Count, LaneLeaf<L>> q{*this, part[i], NodeRay(RaySetup(part[i])), lane, counters};
+          closest<Count>(q, counters);
+        }
       }
     }
   }
@@ -200,7 +213,7 @@ class WideBvh {
   /// Entry distances of the ray into the children of `n` within [t_lo, t_hi]: bit i of the
   /// result is set when child i is entered, at tn[i]. Each lane performs Bvh::enter's
   /// operations: a 0 * inf = NaN slab distance leaves the interval unchanged.
-  static std::uint32_t enter(const Node& n, const NodeRay& r, float t_lo, float t_hi, float* tn) {
+  [[gnu::always_inline]] static std::uint32_t enter(const Node& n, const NodeRay& r, float t_lo, float t_hi, float* tn) {
     std::uint32_t bits = 0;
     for (int s = 0; s < kSteps; ++s) {
       const int o = s * int(Batch::size);
@@ -209,8 +222,8 @@ class WideBvh {
         const Batch org(r.org[a]);
         const Batch t_near = (Batch::load_aligned(n.planes[r.near_row[a]] + o) - org) * Batch(r.inv_dir[a]);
         const Batch t_far = (Batch::load_aligned(n.planes[r.near_row[a] ^ 1] + o) - org) * Batch(r.inv_far[a]);
-        t0 = xsimd::select(t_near > t0, t_near, t0);
-        t1 = xsimd::select(t_far < t1, t_far, t1);
+        t0 = simd::max_or_second(t_near, t0);
+        t1 = simd::min_or_second(t_far, t1);
       }
       t0.store_unaligned(tn + o);
       bits |= simd::mask_bits<Batch>(t0 <= t1) << o;
@@ -246,6 +259,10 @@ class WideBvh {
 
   using PacketBatch = simd::FloatPacket;
   static constexpr std::size_t kPacket = PacketBatch::size;
+  /// Rays that walk the tree together as one frustum in intersect_packet: 16 (a 4x4 tile), in
+  /// 16 / kPacket packets of kPacket lanes.
+  static constexpr std::size_t kGroup = kPacket > 16 ? kPacket : 16;
+  static constexpr std::size_t kPacketsPerGroup = kGroup / kPacket;
 
   /// A packet leaf function seen as a single-ray one for the ray of one lane.
   template <class LeafFn>
@@ -269,26 +286,50 @@ class WideBvh {
     int near_row[3];
     bool one_origin;  ///< Every ray leaves from the same point (camera rays).
 
-    /// Bounds the rays of `p`; false when some axis has directions of both signs or a zero
-    /// component (an infinite inverse), where the ranges would bound nothing useful or make NaNs.
-    /// Lanes past the packet's rays repeat its first ray, so every lane is bounded.
-    bool bound(const RayPacket<PacketBatch>& p) {
+    /// Bounds the rays of `p` (`first`: the first packet of a group, else the ranges so far
+    /// grow); false when some axis has directions of both signs or a zero component (an
+    /// infinite inverse), where the ranges would bound nothing useful or make NaNs. Lanes past
+    /// the packet's rays repeat its first ray, so every lane is bounded.
+    bool bound(const RayPacket<PacketBatch>& p, bool first) {
       constexpr std::uint32_t all = (1u << kPacket) - 1u;
       for (int a = 0; a < 3; ++a) {
         const std::uint32_t negs = simd::mask_bits<PacketBatch>(p.neg[a]);
         if (negs != 0 && negs != all) return false;
         if (simd::mask_bits<PacketBatch>(xsimd::abs(p.inv_far[a]) < PacketBatch(kInfinity)) != all) return false;
-        near_row[a] = 2 * a + (negs != 0 ? 1 : 0);
-        org_lo[a] = simd::reduce_min(p.org[a]);
-        org_hi[a] = simd::reduce_max(p.org[a]);
-        inv_lo[a] = simd::reduce_min(p.inv_dir[a]);
-        inv_hi[a] = simd::reduce_max(p.inv_dir[a]);
+        const int row = 2 * a + (negs != 0 ? 1 : 0);
+        const float olo = simd::reduce_min(p.org[a]), ohi = simd::reduce_max(p.org[a]);
+        const float ilo = simd::reduce_min(p.inv_dir[a]), ihi = simd::reduce_max(p.inv_dir[a]);
+        if (first) {
+          near_row[a] = row;
+          org_lo[a] = olo, org_hi[a] = ohi, inv_lo[a] = ilo, inv_hi[a] = ihi;
+        } else {
+          if (row != near_row[a]) return false;
+          org_lo[a] = std::min(org_lo[a], olo), org_hi[a] = std::max(org_hi[a], ohi);
+          inv_lo[a] = std::min(inv_lo[a], ilo), inv_hi[a] = std::max(inv_hi[a], ihi);
+        }
         // Rounding is monotone and the scale positive, so the range of the scaled lanes is the
         // scaled range, to the bit.
         far_lo[a] = inv_lo[a] * kSlabFarScale;
         far_hi[a] = inv_hi[a] * kSlabFarScale;
       }
       one_origin = org_lo[0] == org_hi[0] && org_lo[1] == org_hi[1] && org_lo[2] == org_hi[2];
+      return true;
+    }
+  };
+
+  /// Up to kGroup rays as packets of kPacket lanes: packet g holds rays [g kPacket, ...).
+  struct PacketGroup {
+    alignas(64) RayPacket<PacketBatch> packet[kPacketsPerGroup];
+    std::size_t count = 0;  ///< Packets holding rays.
+
+    explicit PacketGroup(std::span<const Ray> rays) {
+      for (std::size_t first = 0; first < rays.size(); first += kPacket)
+        new (&packet[count++]) RayPacket<PacketBatch>(rays.subspan(first, std::min(kPacket, rays.size() - first)));
+    }
+    /// The frustum of every ray of the group (PacketFrustum::bound).
+    bool bound(PacketFrustum& f) const {
+      for (std::size_t g = 0; g < count; ++g)
+        if (!f.bound(packet[g], g == 0)) return false;
       return true;
     }
   };
@@ -320,8 +361,8 @@ class WideBvh {
           t_near = xsimd::min(xsimd::min(n0 * i0, n0 * i1), xsimd::min(n1 * i0, n1 * i1));
           t_far = xsimd::max(xsimd::max(f0 * j0, f0 * j1), xsimd::max(f1 * j0, f1 * j1));
         }
-        t0 = xsimd::select(t_near > t0, t_near, t0);
-        t1 = xsimd::select(t_far < t1, t_far, t1);
+        t0 = simd::max_or_second(t_near, t0);
+        t1 = simd::min_or_second(t_far, t1);
       }
       t0.store_unaligned(tn + o);
       bits |= simd::mask_bits<Batch>(t0 <= t1) << o;
@@ -330,19 +371,23 @@ class WideBvh {
   }
 
   /// A group of rays' closest-hit query through its frustum: the interval is the union of the
-  /// rays' intervals, and a leaf tests every ray of the group.
+  /// rays' intervals, and a leaf tests every ray of the group, one packet at a time.
   template <bool Count, class LeafFn>
   struct PacketQuery {
     const WideBvh& bvh;
     std::span<Ray> group;
-    const RayPacket<PacketBatch>& packet;
+    const PacketGroup& packets;
     const PacketFrustum& frustum;
     std::size_t lane_base;
     LeafFn& leaf_fn;
     TraversalCounters* counters;
 
     std::uint64_t rays() const { return group.size(); }
-    float t_lo() const { return simd::reduce_min(packet.t_lo); }
+    float t_lo() const {
+      float lo = kInfinity;
+      for (std::size_t g = 0; g < packets.count; ++g) lo = std::min(lo, simd::reduce_min(packets.packet[g].t_lo));
+      return lo;
+    }
     float t_hi() const {
       float hi = -kInfinity;
       for (const Ray& r : group) hi = std::max(hi, widen_up(r.tmax));
@@ -353,10 +398,20 @@ class WideBvh {
                                 : enter_frustum<false>(n, frustum, lo, hi, tn);
     }
     void leaf(std::uint32_t first, std::uint32_t count) {
+      for (std::size_t g = 0; g < packets.count; ++g) {
+        const std::size_t at = g * kPacket;
+        leaf_of(packets.packet[g], group.subspan(at, std::min(kPacket, group.size() - at)), lane_base + at, first,
+                count);
+      }
+    }
+
+    /// The leaf [first, first + count) against the rays of one packet.
+    void leaf_of(const RayPacket<PacketBatch>& packet, std::span<Ray> rays, std::size_t base, std::uint32_t first,
+                 std::uint32_t count) {
       if constexpr (AcceptingPacketLeafFn<LeafFn>) {
         if (!bvh.spheres_.empty()) {
-          bvh.spheres_.template test_packet<Count>(bvh.prim_ids_.data(), first, count, packet.valid, packet, group,
-                                                   lane_base, leaf_fn, counters);
+          bvh.spheres_.template test_packet<Count>(bvh.prim_ids_.data(), first, count, packet.valid, packet, rays,
+                                                   base, leaf_fn, counters);
           return;
         }
       }
@@ -366,7 +421,7 @@ class WideBvh {
       // hits so far, so that a near hit spares the farther primitives behind it.
       const auto hi_now = [&] {
         alignas(64) float hi[kPacket];
-        for (std::size_t i = 0; i < kPacket; ++i) hi[i] = widen_up(group[i < group.size() ? i : 0].tmax);
+        for (std::size_t i = 0; i < kPacket; ++i) hi[i] = widen_up(rays[i < rays.size() ? i : 0].tmax);
         return PacketBatch::load_aligned(hi);
       };
       const auto test = [&](std::uint32_t j, std::uint32_t lanes) {
@@ -374,7 +429,7 @@ class WideBvh {
         for (; lanes; lanes &= lanes - 1u) {
           const std::size_t i = std::size_t(std::countr_zero(lanes));
           if constexpr (Count) counters->prims_tested++;
-          kept |= leaf_fn(lane_base + i, bvh.prim_ids_[j], group[i]);
+          kept |= leaf_fn(base + i, bvh.prim_ids_[j], rays[i]);
         }
         return kept;
       };
