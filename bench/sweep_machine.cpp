@@ -1,5 +1,7 @@
 #include "sweep_machine.h"
 
+#include "accel/isa.h"
+
 #include <sys/utsname.h>
 #include <unistd.h>
 
@@ -69,6 +71,12 @@ std::string runtime_git_commit() {
   return out.size() == 40 ? out : "";
 }
 
+std::vector<std::string> isa_names(accel::IsaSet set) {
+  std::vector<std::string> out;
+  for (accel::Isa isa : accel::isas_in(set)) out.push_back(accel::isa_name(isa));
+  return out;
+}
+
 }  // namespace
 
 std::string utc_now_iso8601() {
@@ -92,6 +100,9 @@ nlohmann::json machine_info() {
           {"hostname", std::string(u.nodename)},
           {"compiler", compiler()},
           {"flags", ACCELBENCH_CXX_FLAGS},
+          // The instruction set the numbers were measured at: the level this build targets (its
+          // SIMD width and Embree's default), and every level the CPU has.
+          {"isa", {{"build", accel::isa_name(accel::build_isa())}, {"cpu", isa_names(accel::cpu_isas())}}},
           {"build_type", ACCELBENCH_BUILD_TYPE},
           {"git_commit", now.empty() ? built : now},
           {"git_commit_at_build", built},

@@ -2,6 +2,8 @@
 // The main() of a Google Benchmark binary whose benchmarks check their answers before timing:
 // runs what the command line selects, then exits non-zero when any check failed.
 
+#include "accel/isa.h"
+
 #include <benchmark/benchmark.h>
 
 #include <cstdio>
@@ -17,6 +19,9 @@ inline int run_validated_benchmarks(int argc, char** argv, void (*register_all)(
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return bad_arguments_status;
   register_all();
+  // The instruction set every figure names: the level this build targets, and the CPU's levels.
+  benchmark::AddCustomContext("isa", accel::isa_name(accel::build_isa()));
+  benchmark::AddCustomContext("cpu_isas", accel::isa_list(accel::cpu_isas()));
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();
   if (failures > 0) {

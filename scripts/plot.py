@@ -155,7 +155,28 @@ def best_per_variant(rows, scene):
     return dict(sorted(best.items(), key=lambda kv: order_key(kv[0])))
 
 
+# Where the figures' numbers were measured, written under every figure (see machine_note).
+MACHINE_NOTE = ""
+
+
+def machine_note(machines):
+    """CPU model, the instruction set the build targeted (`machine.isa.build`) and the date, per
+    distinct machine of the results; an older file without the field says so."""
+    notes = []
+    for m in machines:
+        if not isinstance(m, dict) or not m:
+            continue
+        isa = m.get("isa") if isinstance(m.get("isa"), dict) else {}
+        level = f"ISA {isa['build']}" if isa.get("build") else "ISA not recorded"
+        text = f"{m.get('cpu_model', 'unknown CPU')}, {level}, {str(m.get('date', ''))[:10]}"
+        if text not in notes:
+            notes.append(text)
+    return ("measured on " + "; ".join(notes)) if notes else ""
+
+
 def save(fig, out_dir, name):
+    if MACHINE_NOTE:
+        fig.text(0.99, 0.0, MACHINE_NOTE, ha="right", va="top", fontsize=7, color="0.35")
     paths = []
     for ext in ("png", "svg"):
         path = os.path.join(out_dir, f"{name}.{ext}")
@@ -737,10 +758,12 @@ def main(argv):
     try:
         docs = load_docs(args.results)
         sweeps = [p for p, d in docs if not is_fronts(d)]
-        rows, _ = load_rows(sweeps)
+        rows, machines = load_rows(sweeps)
     except PlotError as e:
         print(f"plot: {e}", file=sys.stderr)
         return 1
+    global MACHINE_NOTE
+    MACHINE_NOTE = machine_note(machines + [d.get("machine", {}) for _, d in docs if is_fronts(d)])
     fronts_docs = [d for _, d in docs if is_fronts(d)]
     if not ok_rows(rows) and not fronts_docs:
         print("plot: no ok rows to plot", file=sys.stderr)

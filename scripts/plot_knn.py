@@ -88,6 +88,7 @@ def machine_line(ctx):
     load = ctx.get("load_avg")
     cpus = ctx.get("num_cpus")
     s = f"{cpus} CPUs" if cpus else ""
+    s += f", ISA {ctx['isa']}" if ctx.get("isa") else ", ISA not recorded"
     if load:
         s += f", load average {load[0]:.1f} at start" + (" (loaded: timings unreliable)" if cpus and load[0] > 0.5 * cpus else "")
     return s

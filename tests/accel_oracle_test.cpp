@@ -71,6 +71,27 @@ OracleScene make_scene(const std::string& kind, std::uint32_t seed) {
     for (int x = 0; x < 6; ++x)
       for (int y = 0; y < 6; ++y)
         for (int z = 0; z < 6; ++z) add_sphere(g, {float(x), float(y), float(z)}, 0.5f);
+  } else if (kind == "mixed") {
+    // Spheres (ids first) among triangles, boxes and cones: the SIMD sphere leaves hold the
+    // spheres and hand the other primitives to the leaf function.
+    for (int i = 0; i < 120; ++i) add_sphere(g, {u(rng), u(rng), u(rng)}, radius(rng));
+    for (int i = 0; i < 60; ++i) {
+      const Vec3 p(u(rng), u(rng), u(rng));
+      g.triangles.push_back({p, p + Vec3(radius(rng), 0.0f, 0.1f), p + Vec3(0.0f, radius(rng), -0.1f), 0});
+    }
+    for (int i = 0; i < 30; ++i) {
+      const Vec3 p(u(rng), u(rng), u(rng));
+      g.boxes.push_back({p, p + Vec3(radius(rng), radius(rng), radius(rng)), 0});
+    }
+    for (int i = 0; i < 30; ++i) {
+      tracer::Cone c;
+      c.base = Vec3(u(rng), u(rng), u(rng));
+      c.axis = glm::normalize(Vec3(u(rng), u(rng), u(rng)) + Vec3(0.0f, 0.0f, 11.0f));
+      c.base_radius = radius(rng);
+      c.apex_radius = 0.5f * c.base_radius;
+      c.height = 2.0f * radius(rng);
+      g.cones.push_back(c);
+    }
   } else if (kind == "single") {
     add_sphere(g, {0.25f, 0.5f, -0.75f}, 1.0f);
   } else if (kind != "empty") {
@@ -420,6 +441,9 @@ TEST_P(Oracle, EveryStructureAndKnobMatchesNaive) {
         EXPECT_EQ(compare(label + " (boxes only)", scene.geometry, a, ref, false), 0) << label;
       }
       tracer::attach_geometry(a, scene.geometry);
+      if (const auto* wide = std::get_if<accel::Bvh8>(&a.variant()))
+        EXPECT_EQ(wide->has_sphere_leaves(), scene.geometry.kind_set() == tracer::KindSet::SpheresOnly && !scene.geometry.spheres.empty())
+            << label << ": the spheres of a sphere-only scene test in SIMD";
       if (!accel::find_structure(name)->exact) {
         // Its own primitive routine answers: the same primitive and any-hit answer, and t within
         // 1e-5, for all but a few of these adversarial rays (grazing rays, whose t is
@@ -446,7 +470,7 @@ TEST_P(Oracle, EveryStructureAndKnobMatchesNaive) {
 
 INSTANTIATE_TEST_SUITE_P(Scenes, Oracle,
                          ::testing::Values("uniform", "clustered", "huge_among_tiny", "line",
-                                           "duplicates", "grid", "single", "empty"),
+                                           "duplicates", "grid", "mixed", "single", "empty"),
                          [](const ::testing::TestParamInfo<const char*>& scene) {
                            return std::string(scene.param);
                          });

@@ -594,6 +594,14 @@ class WideBvh {
     int sp = 0;
     std::uint32_t live = packet.valid;  // rays not yet occluded
     Pending at{0, live};
+    // Where the rays' directions share their signs (a tile's shadow rays toward one light), the
+    // group's frustum tests a node's children in one step first and only the children it may
+    // enter are tested ray by ray: the frustum is conservative (enter_frustum), so no ray's
+    // answer changes.
+    PacketFrustum frustum;
+    const bool use_frustum = frustum.bound(packet, true);
+    const float frustum_lo = simd::reduce_min(packet.t_lo), frustum_hi = simd::reduce_max(t_hi);
+    alignas(64) float tn[W];
     for (;;) {
       at.lanes &= live;
       if (at.lanes) {
@@ -602,7 +610,12 @@ class WideBvh {
           counters->boxes_tested += std::uint64_t(W) * std::uint64_t(std::popcount(at.lanes));
         }
         const Node& n = nodes_[at.node];
-        for (int c = 0; c < W; ++c) {
+        std::uint32_t children = (1u << W) - 1u;
+        if (use_frustum)
+          children = frustum.one_origin ? enter_frustum<true>(n, frustum, frustum_lo, frustum_hi, tn)
+                                        : enter_frustum<false>(n, frustum, frustum_lo, frustum_hi, tn);
+        for (; children; children &= children - 1u) {
+          const int c = std::countr_zero(children);
           if (!(n.planes[0][c] <= n.planes[1][c])) continue;  // unused slot
           const std::uint32_t in = enter_rays(n, c, packet, t_hi) & at.lanes;
           if (!in) continue;
