@@ -18,14 +18,9 @@ class AnyAccel;
 ///
 /// The cost model: naive pays one primitive test per primitive per ray and nothing else; a bvh
 /// pays a per-ray setup, box tests and a stack, and wins only once the primitives it skips
-/// outweigh that. Measured (Release, one thread, closest hits stored per ray, bvh / naive rays
-/// per second): on `random` scenes at 512x384, where many rays miss, 0.61 at 2 spheres, 0.94 at
-/// 4, 1.47 at 8, 2.2 at 16, 5.4 at 64; on `five` (5 spheres filling the view) at 1024x768, 0.70.
-/// The crossover lies between 4 and 8 primitives and later for scenes that fill the view, so
-/// naive is kept up to 8. Above it `bvh8`: of every structure's whole renders (bench_trace
-/// Render/, spheres8000 and the ten SPD scenes, 2 December 2026) it was within 5% of the
-/// fastest on each in one run and within 6% on all but gears_sf4 (1.14) in a second, where `bvh`
-/// took 1.15 to 1.67 times the fastest's time (docs/structures.md).
+/// outweigh that. The measured crossover lies between 4 and 8 primitives, later for scenes that
+/// fill the view, so naive is kept up to 8. Above it `bvh8`, the fastest or near it on every
+/// whole render measured. The measurements: docs/structures.md ("auto").
 struct AutoParams {
   /// Scenes with at most this many primitives use naive; larger ones a bvh8 with default knobs.
   int naive_max_prims = 8;

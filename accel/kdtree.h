@@ -36,21 +36,15 @@ enum class SplitRule : std::uint8_t {
 };
 
 /// Knobs of the kd-tree. The defaults are the paper's midpoint rule and pbrt-v3's SAH cost
-/// model with costs measured here; depth 24 is about pbrt-v3's 8 + 1.3 log2(N) for the
-/// 8000-sphere scene, and leaves of 4 traced faster there than leaves of 1 or 2 with the midpoint
-/// rule (a sphere test costs less than a cell step).
+/// model with costs fitted to our sphere test; depth 24 is about pbrt-v3's 8 + 1.3 log2(N) for the
+/// 8000-sphere scene, and leaves of 4 trace faster there than leaves of 1 or 2 (a sphere test
+/// costs less than a cell step).
 ///
 /// SAH costs: pbrt-v3's 1 / 80 / 0.5 (traversal, intersection, empty bonus) are calibrated for
-/// its expensive general shapes. Fitting time per ray to nodes visited and spheres tested over
-/// 15 spheres8000 trees gave about 4.7 ns per cell step and 2.5 ns per sphere test, hence
-/// intersection_cost 0.5. With max_leaf_size 4 the cost ratio barely moves the tree; the empty
-/// bonus is what matters: at 0.5 the search spends the depth budget shaving thin empty slabs off
-/// cells (depth 24 reached, leaves of up to 50 spheres). Closest-hit Mrays/s, one thread, 2-core
-/// AMD EPYC VM, bench_trace Trace/spheres8000 (medians of 3): pbrt-v3's values, coherent 5.71
-/// vs Embree 13.11 (0.44x), incoherent 1.44 vs 4.51 (0.32x); these defaults, coherent 11.44
-/// vs 13.05 (0.88x), incoherent 2.50 vs 4.33 (0.58x). Empty bonus 0..0.25 and
-/// intersection cost 0.5..80 tie there within noise; 0.2 / 0.5 were best or tied on
-/// sphereflake (0.83-0.88x), random 8000 (0.85x) and grid 8000 (1.4x) too.
+/// its expensive general shapes; our sphere test costs about half a cell step, hence
+/// intersection_cost 0.5. The empty bonus is what matters: at 0.5 the search spends the depth
+/// budget shaving thin empty slabs off cells and leaves large leaves. The fit and the timings
+/// behind these defaults: docs/structures.md ("kd-tree SAH costs").
 struct KdTreeParams {
   /// Deepest level a cell may be split to, root = 0; a cell at this depth is a leaf. 0..64.
   int max_depth = 24;
@@ -62,7 +56,7 @@ struct KdTreeParams {
   SplitRule split = SplitRule::Midpoint;
   /// SAH cost of one traversal step, in the same units as intersection_cost (pbrt-v3: 1).
   float traversal_cost = 1.0f;
-  /// SAH cost of one primitive test, measured for a sphere test (pbrt-v3: 80).
+  /// SAH cost of one primitive test, fitted for a sphere test (pbrt-v3: 80).
   float intersection_cost = 0.5f;
   /// Fraction of the SAH cost forgiven when a split leaves one side empty, 0..1 (pbrt-v3: 0.5).
   float empty_bonus = 0.2f;

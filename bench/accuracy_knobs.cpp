@@ -29,7 +29,7 @@ constexpr std::array kKnobs = {
     AccuracyKnob{"whitted", "spp", "samples",
                  "camera rays per pixel: more samples average away aliasing at edges",
                  "[1, 2, 4, 8, 16, 32, 64]", "", R"({"spp": 1024})", "", true},
-    // Float against double (issue 9's reference tracer): the reference is the double render at
+    // Float against double (the double-precision reference tracer): the reference is the double render at
     // the front's own other knobs, so the double point has error 0 and float's error is its
     // distance from double. The reference's own rounding (relative 2^-53 per operation) is not
     // estimated: there is no wider type to check it against; its floor reads 0.

@@ -44,7 +44,7 @@ struct StabilityOptions {
   std::string images_dir;                  ///< Where PNGs of every render go; "" = none.
 };
 
-/// The thresholds of issue 9 for a variant: a secondary ray count (reflection, refraction,
+/// The suite's thresholds for a variant: a secondary ray count (reflection, refraction,
 /// shadow) may change by at most `max_ray_change` and at most `max_fraction_off` of the pixels
 /// may be more than 1% off the base (negative: no bound). Null for variants without a target.
 nlohmann::json variant_target(const StabilityVariant& v);

@@ -4,7 +4,7 @@
 Writes results/stability.{png,svg}: for each scene, the share of pixels more than 1% off the
 untransformed render against the translation distance 10^k (along x, and along the diagonal) and
 against the scale factor 10^k, one solid line for the float renderer and one dashed line for the
-double-precision reference (naive in double), with the issue-9 targets as grey bars. A point on
+double-precision reference (naive in double), with the suite's thresholds as grey bars. A point on
 the floor of the log axis (1e-4) is an image equal to the base within 1% everywhere. Structures
 that disagree with naive are listed in the title of their scene's panel.
 
@@ -20,6 +20,9 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from plot import machine_note  # noqa: E402
 
 FLOOR = 1e-4  # drawn in place of 0 on the log axis
 GROUPS = [("translate_x", "translated along x by 10^k"),
@@ -96,9 +99,12 @@ def main():
     fig.suptitle(f"Stability: whole scenes moved and scaled, float renderer against the double "
                  f"reference ({res[0]}x{res[1]}, {docs[0]['integrator']})", fontsize=10)
     fig.tight_layout()
+    note = machine_note([doc.get("machine") for doc in docs])
+    if note:
+        fig.text(0.99, 0.0, note, ha="right", va="top", fontsize=7, color="0.35")
     os.makedirs(args.out, exist_ok=True)
     for ext in ("png", "svg"):
-        fig.savefig(os.path.join(args.out, "stability." + ext), dpi=90)
+        fig.savefig(os.path.join(args.out, "stability." + ext), dpi=90, bbox_inches="tight")
     print(os.path.join(args.out, "stability.{png,svg}"))
 
 

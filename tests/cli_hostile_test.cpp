@@ -1,4 +1,4 @@
-// Hostile input to the accelbench command line: every case of issue 12 (and its neighbours), run
+// Hostile input to the accelbench command line: every hostile case we know of (and its neighbours), run
 // as a user runs it, with its exact one-line message and exit status. No case may crash, hang,
 // read without bound, or print an exception's raw text.
 
