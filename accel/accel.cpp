@@ -83,7 +83,7 @@ void check_knob(std::string_view name, const std::string& knob, const nlohmann::
     E::Params::knobs().read(nlohmann::json{{knob, value}}, p);
   });
   if (!found)
-    throw ConfigError("unknown structure '" + std::string(name) + "' (valid: " + valid_names() + ")");
+    throw knobs::ConfigError("unknown structure '" + std::string(name) + "' (valid: " + valid_names() + ")");
 }
 
 void check_knob_name(std::string_view name, const std::string& knob) {
@@ -93,10 +93,10 @@ void check_knob_name(std::string_view name, const std::string& knob) {
     found = true;
     const auto& table = E::Params::knobs();
     if (!table.find(knob))
-      throw ConfigError(std::string(E::kName) + ": unknown parameter '" + knob + "' (" + table.known_text() + ")");
+      throw knobs::ConfigError(std::string(E::kName) + ": unknown knob '" + knob + "' (" + table.known_text() + ")");
   });
   if (!found)
-    throw ConfigError("unknown structure '" + std::string(name) + "' (valid: " + valid_names() + ")");
+    throw knobs::ConfigError("unknown structure '" + std::string(name) + "' (valid: " + valid_names() + ")");
 }
 
 AnyAccel make_accel(std::string_view name, const nlohmann::json& params,
@@ -106,14 +106,14 @@ AnyAccel make_accel(std::string_view name, const nlohmann::json& params,
     if (built || name != E::kName) return;
     const typename E::Params p = E::Params::knobs().from_json(params);
     if constexpr (MissingEntry<E>)
-      throw ConfigError(std::string(E::kName) + ": " + E::kMissing);
+      throw knobs::ConfigError(std::string(E::kName) + ": " + E::kMissing);
     else if constexpr (SelectorEntry<E>)
       built = E::select(boxes, p, limits);
     else
       built.emplace(E(boxes, p, limits));
   });
   if (!built)
-    throw ConfigError("unknown structure '" + std::string(name) + "' (valid: " + valid_names() + ")");
+    throw knobs::ConfigError("unknown structure '" + std::string(name) + "' (valid: " + valid_names() + ")");
   return std::move(*built);
 }
 

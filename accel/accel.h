@@ -4,7 +4,7 @@
 // from the registry (registry.h).
 
 #include "build_limits.h"
-#include "config_error.h"
+#include "knobs/config_error.h"
 #include "geometry.h"
 #include "registry.h"
 #include "stats.h"
@@ -47,8 +47,8 @@ struct StructureInfo {
   /// A peer we measure against (Embree), not one of ours: benchmarks pair our renders with it.
   bool peer = false;
   std::vector<std::string> knobs; ///< Knob names in display order.
-  nlohmann::json knob_table;      ///< KnobTable::describe() of its parameter struct.
-  std::string knob_markdown;      ///< KnobTable::markdown() of its parameter struct.
+  nlohmann::json knob_table;      ///< knobs::KnobTable::describe() of its parameter struct.
+  std::string knob_markdown;      ///< knobs::KnobTable::markdown() of its parameter struct.
 };
 
 /// Every registry entry, in display order.
@@ -60,22 +60,22 @@ const StructureInfo* find_structure(std::string_view name);
 std::vector<std::string> accel_names();
 
 /// False for a structure compiled out of this build (embree without Embree 3) or an unknown
-/// name; make_accel then throws ConfigError saying why.
+/// name; make_accel then throws knobs::ConfigError saying why.
 bool accel_built(std::string_view name);
 
 /// The knob names of structure `name` (empty for none); nullopt for an unknown name.
 std::optional<std::vector<std::string>> knob_names(std::string_view name);
 
-/// Throws the ConfigError make_accel would throw for knob `knob` = `value` of structure `name`
+/// Throws the knobs::ConfigError make_accel would throw for knob `knob` = `value` of structure `name`
 /// (unknown structure, unknown knob, wrong type, out of range); returns when it is acceptable.
 void check_knob(std::string_view name, const std::string& knob, const nlohmann::json& value);
 
-/// Throws the ConfigError make_accel would throw when structure `name` has no knob `knob`
-/// ("<name>: unknown parameter '<knob>' (its knobs: ...)"), or for an unknown structure.
+/// Throws the knobs::ConfigError make_accel would throw when structure `name` has no knob `knob`
+/// ("<name>: unknown knob '<knob>' (its knobs: ...)"), or for an unknown structure.
 void check_knob_name(std::string_view name, const std::string& knob);
 
 /// Builds the structure `name` over `boxes`. `params` holds that structure's knobs (unknown keys
-/// are rejected). Throws ConfigError.
+/// are rejected). Throws knobs::ConfigError.
 AnyAccel make_accel(std::string_view name, const nlohmann::json& params,
                     std::span<const Aabb> boxes, const BuildLimits& limits = {});
 

@@ -4,9 +4,9 @@
 
 namespace accel {
 
-const KnobTable<AutoParams>& AutoParams::knobs() {
-  using K = Knob<AutoParams>;
-  static const KnobTable<AutoParams> table(
+const knobs::KnobTable<AutoParams>& AutoParams::knobs() {
+  using K = knobs::Knob<AutoParams>;
+  static const knobs::KnobTable<AutoParams> table(
       "auto", {K::integer("naive_max_prims", &AutoParams::naive_max_prims, 0, 1 << 30, "primitives",
                           "Scenes with at most this many primitives use naive; larger ones a tree.")
                    .probes({0, 1 << 30})});

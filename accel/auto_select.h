@@ -5,7 +5,7 @@
 
 #include "build_limits.h"
 #include "geometry.h"
-#include "knob_table.h"
+#include "knobs/knob_table.h"
 
 #include <cstddef>
 #include <span>
@@ -26,7 +26,7 @@ struct AutoParams {
   int naive_max_prims = 8;
 
   /// Name, range, unit and doc line of every knob above.
-  static const KnobTable<AutoParams>& knobs();
+  static const knobs::KnobTable<AutoParams>& knobs();
 };
 
 /// What `auto` picked.
@@ -46,7 +46,7 @@ struct AutoSelect {
   /// Marks a registry entry that chooses among the structures instead of being one.
   static constexpr bool kSelector = true;
 
-  /// Builds the structure chosen for `boxes`; throws ConfigError like make_accel.
+  /// Builds the structure chosen for `boxes`; throws knobs::ConfigError like make_accel.
   static AnyAccel select(std::span<const Aabb> boxes, const AutoParams& params, const BuildLimits& limits);
 };
 

@@ -1,6 +1,6 @@
 #pragma once
 // Memory accounting for tree builders: every array a builder grows goes through a BuildBudget,
-// which refuses (ConfigError naming the knobs to change) before the bytes held would pass the
+// which refuses (knobs::ConfigError naming the knobs to change) before the bytes held would pass the
 // budget, so a runaway build stops cleanly instead of exhausting the machine's memory.
 
 #include "accel.h"
@@ -54,7 +54,7 @@ class BuildBudget {
       std::snprintf(size, sizeof size, "%.1f GiB", gib);
     else
       std::snprintf(size, sizeof size, "%.1f MiB", double(budget_) / double(1 << 20));
-    throw ConfigError(structure_ + ": build needs more than " + size + " (--max-memory); " + advice_);
+    throw knobs::ConfigError(structure_ + ": build needs more than " + size + " (--max-memory); " + advice_);
   }
 
   std::uint64_t budget_;

@@ -5,7 +5,7 @@
 
 namespace accel {
 
-/// Limits every builder honours; a build that would pass one throws ConfigError naming the knob.
+/// Limits every builder honours; a build that would pass one throws knobs::ConfigError naming the knob.
 struct BuildLimits {
   /// Most bytes a structure may allocate for nodes and references; 0 means 25% of physical RAM.
   std::uint64_t max_memory_bytes = 0;

@@ -4,19 +4,21 @@
 
 namespace accel {
 
-const KnobTable<BvhParams>& BvhParams::knobs() {
-  using K = Knob<BvhParams>;
-  static const KnobTable<BvhParams> table(
+const knobs::KnobTable<BvhParams>& BvhParams::knobs() {
+  using K = knobs::Knob<BvhParams>;
+  static const knobs::KnobTable<BvhParams> table(
       "bvh",
       {K::integer("bins", &BvhParams::bins, 8, 256, "bins per axis",
                   "Centroid bins per axis the SAH evaluates; more bins approach a full sweep.")
            .probes({8, 256}),
        K::integer("max_leaf_size", &BvhParams::max_leaf_size, 1, 255, "primitives",
                   "A node holding more primitives is always split; at or below it the SAH decides.")
+           .shorthand("--leaf-size")
            .crossed()
            .probes({1, 2, 4, 8, 16}),
        K::integer("max_depth", &BvhParams::max_depth, 0, 64, "levels",
                   "Deepest level (root = 0): a node there is a leaf whatever it holds.")
+           .shorthand()
            .crossed()
            .probes({0, 1, 2, 3, 5, 8, 12, 20}),
        K::number("traversal_cost", &BvhParams::traversal_cost, 0.0, 1000.0, "primitive tests",

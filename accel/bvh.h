@@ -5,7 +5,7 @@
 #include "cache_line_allocator.h"
 #include "geometry.h"
 #include "interval_slack.h"
-#include "knob_table.h"
+#include "knobs/knob_table.h"
 #include "leaf_loop.h"
 #include "ray_setup.h"
 #include "sphere_soa.h"
@@ -39,7 +39,7 @@ struct BvhParams {
   float traversal_cost = 3.0f;
 
   /// Name, range, unit and doc line of every knob above.
-  static const KnobTable<BvhParams>& knobs();
+  static const knobs::KnobTable<BvhParams>& knobs();
 };
 
 /// Wald's 32-byte node: the box, then for a leaf its primitive range, for an inner node the
@@ -63,7 +63,7 @@ class Bvh {
   static constexpr int kStackSize = 64;
 
   Bvh() = default;
-  /// Builds over `boxes` (primitive id = index). Throws ConfigError when the nodes would pass
+  /// Builds over `boxes` (primitive id = index). Throws knobs::ConfigError when the nodes would pass
   /// the memory budget of `limits`.
   Bvh(std::span<const Aabb> boxes, const BvhParams& params, const BuildLimits& limits);
   explicit Bvh(std::span<const Aabb> boxes, const BvhParams& params = {});

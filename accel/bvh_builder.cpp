@@ -107,7 +107,7 @@ void Bvh::build(std::span<const Aabb> boxes, std::uint64_t max_memory_bytes) {
   const std::uint64_t bytes =
       node_bound * sizeof(BvhNode) + n * (sizeof(std::uint32_t) + BinnedSah::kBytesPerPrimitive);
   if (bytes > max_memory_bytes)
-    throw ConfigError("bvh: " + std::to_string(n) + " primitives need " + std::to_string(bytes) +
+    throw knobs::ConfigError("bvh: " + std::to_string(n) + " primitives need " + std::to_string(bytes) +
                       " bytes, over the memory budget of " + std::to_string(max_memory_bytes) +
                       " bytes (raise --max-memory)");
 

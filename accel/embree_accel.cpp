@@ -108,7 +108,7 @@ EmbreeAccel::EmbreeAccel(std::span<const Aabb> boxes, const EmbreeParams& params
   std::string config = "isa=" + std::string(isa_name(isa_));
   if (params_.build_threads > 0) config += ",threads=" + std::to_string(params_.build_threads);
   device_ = embree_detail::Device(rtcNewDevice(config.c_str()));
-  if (!device_.get()) throw ConfigError(std::string(owner_) + ": rtcNewDevice failed (config '" + config + "')");
+  if (!device_.get()) throw knobs::ConfigError(std::string(owner_) + ": rtcNewDevice failed (config '" + config + "')");
   rtcSetDeviceErrorFunction(device_.get(), embree_detail::on_error, monitor_.get());
   rtcSetDeviceMemoryMonitorFunction(device_.get(), embree_detail::on_memory, monitor_.get());
 
@@ -145,10 +145,10 @@ embree_detail::Scene EmbreeAccel::new_scene() const {
 void EmbreeAccel::commit(const embree_detail::Scene& scene) const {
   rtcCommitScene(scene.get());
   if (monitor_->over_budget)
-    throw ConfigError(std::string(owner_) + ": the build needs more than the memory budget of " +
+    throw knobs::ConfigError(std::string(owner_) + ": the build needs more than the memory budget of " +
                       std::to_string(monitor_->budget) + " bytes (raise --max-memory)");
   if (rtcGetDeviceError(device_.get()) != RTC_ERROR_NONE || !monitor_->error.empty())
-    throw ConfigError(std::string(owner_) + ": build failed: " + monitor_->error);
+    throw knobs::ConfigError(std::string(owner_) + ": build failed: " + monitor_->error);
 }
 
 std::uint64_t EmbreeAccel::allocated_bytes() const { return std::uint64_t(std::max<std::int64_t>(monitor_->bytes, 0)); }

@@ -187,7 +187,7 @@ class EmbreeAccel {
   static constexpr bool kPeer = true;
 
   EmbreeAccel() = default;
-  /// Builds an Embree scene over `boxes` (primitive id = index). Throws ConfigError, starting
+  /// Builds an Embree scene over `boxes` (primitive id = index). Throws knobs::ConfigError, starting
   /// with `owner`, when Embree fails or its allocations would pass the memory budget of `limits`.
   EmbreeAccel(std::span<const Aabb> boxes, const EmbreeParams& params, const BuildLimits& limits,
               const char* owner = kName);
@@ -246,7 +246,7 @@ class EmbreeAccel {
 
   const EmbreeParams& params() const { return params_; }
   /// For a peer built on this one (embree_points): the device, a new scene with this one's
-  /// build settings, a commit that throws ConfigError on Embree's errors and on the memory
+  /// build settings, a commit that throws knobs::ConfigError on Embree's errors and on the memory
   /// budget, the bytes Embree holds now, and swapping the scene queries use for another.
   RTCDevice device() const { return device_.get(); }
   embree_detail::Scene new_scene() const;

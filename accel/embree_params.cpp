@@ -10,8 +10,8 @@ namespace {
 /// The knobs of every Embree peer, for the parameter struct P (EmbreeParams or a struct derived
 /// from it); the members are EmbreeParams's.
 template <class P>
-std::vector<Knob<P>> embree_knobs() {
-  using K = Knob<P>;
+std::vector<knobs::Knob<P>> embree_knobs() {
+  using K = knobs::Knob<P>;
   return {K::choice("build_quality", static_cast<EmbreeQuality P::*>(&P::build_quality),
                     {{"medium", EmbreeQuality::Medium}, {"high", EmbreeQuality::High}},
                     "RTC_BUILD_QUALITY_MEDIUM or _HIGH (slower build, SAH splits)."),
@@ -53,13 +53,13 @@ const char* isa_spelling(EmbreeIsa isa) {
 
 }  // namespace
 
-const KnobTable<EmbreeParams>& EmbreeParams::knobs() {
-  static const KnobTable<EmbreeParams> table("embree", embree_knobs<EmbreeParams>());
+const knobs::KnobTable<EmbreeParams>& EmbreeParams::knobs() {
+  static const knobs::KnobTable<EmbreeParams> table("embree", embree_knobs<EmbreeParams>());
   return table;
 }
 
-const KnobTable<EmbreePointsParams>& EmbreePointsParams::knobs() {
-  static const KnobTable<EmbreePointsParams> table("embree_points", embree_knobs<EmbreePointsParams>());
+const knobs::KnobTable<EmbreePointsParams>& EmbreePointsParams::knobs() {
+  static const knobs::KnobTable<EmbreePointsParams> table("embree_points", embree_knobs<EmbreePointsParams>());
   return table;
 }
 
@@ -93,7 +93,7 @@ int resolve_embree_packet(EmbreePacket packet, Isa isa) {
 void check_embree_isa(EmbreeIsa isa, IsaSet cpu, const char* owner) {
   const Isa level = resolve_embree_isa(isa, cpu);
   if (cpu & isa_bit(level)) return;
-  throw ConfigError(std::string(owner) + ": parameter 'isa' = " + isa_spelling(isa) + " needs " +
+  throw knobs::ConfigError(std::string(owner) + ": knob 'isa' = " + isa_spelling(isa) + " needs " +
                     isa_features(level) + ", which this CPU lacks (it has " + isa_list(cpu) + ")");
 }
 

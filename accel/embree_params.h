@@ -3,7 +3,7 @@
 // was found, so that the knob reference and the registry know them in every build.
 
 #include "isa.h"
-#include "knob_table.h"
+#include "knobs/knob_table.h"
 
 #include <cstdint>
 
@@ -46,19 +46,19 @@ struct EmbreeParams {
   EmbreePacket packet = EmbreePacket::Auto;
 
   /// Name, range, unit and doc line of every knob above.
-  static const KnobTable<EmbreeParams>& knobs();
+  static const knobs::KnobTable<EmbreeParams>& knobs();
 };
 
 /// Knobs of embree_points: the same as the user-geometry adapter's, under its own name.
 struct EmbreePointsParams : EmbreeParams {
-  static const KnobTable<EmbreePointsParams>& knobs();
+  static const knobs::KnobTable<EmbreePointsParams>& knobs();
 };
 
 /// The level `isa` stands for on a CPU with the levels `cpu` (Build and Cpu resolved).
 Isa resolve_embree_isa(EmbreeIsa isa, IsaSet cpu);
 /// Rays per packet query for `packet` at Embree's level `isa`: 4, 8 or 16.
 int resolve_embree_packet(EmbreePacket packet, Isa isa);
-/// Throws ConfigError "<owner>: parameter 'isa' = ...", one line naming the level and the knob,
+/// Throws knobs::ConfigError "<owner>: knob 'isa' = ...", one line naming the level and the knob,
 /// when `isa` asks for a level the CPU with the levels `cpu` lacks.
 void check_embree_isa(EmbreeIsa isa, IsaSet cpu, const char* owner = "embree");
 

@@ -1,6 +1,6 @@
 #include "embree_points.h"
 
-#include "config_error.h"
+#include "knobs/config_error.h"
 
 #include <chrono>
 #include <stdexcept>

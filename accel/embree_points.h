@@ -35,7 +35,7 @@ class EmbreePoints {
   }
 
   /// Rebuilds the scene with `spheres` (spheres[i] is primitive i) as Embree's sphere points.
-  /// Throws ConfigError on Embree's errors and the memory budget.
+  /// Throws knobs::ConfigError on Embree's errors and the memory budget.
   void attach_spheres(std::span<const SphereShape> spheres);
   /// True once the spheres are attached: Embree's own spheres answer the queries.
   bool native() const { return native_; }

@@ -7,21 +7,24 @@
 
 namespace accel {
 
-const KnobTable<KdTreeParams>& KdTreeParams::knobs() {
-  using K = Knob<KdTreeParams>;
-  static const KnobTable<KdTreeParams> table(
+const knobs::KnobTable<KdTreeParams>& KdTreeParams::knobs() {
+  using K = knobs::Knob<KdTreeParams>;
+  static const knobs::KnobTable<KdTreeParams> table(
       "kdtree",
       {K::integer("max_depth", &KdTreeParams::max_depth, 0, 64, "levels",
                   "Deepest level a cell may be split to (root = 0); a cell there is a leaf.")
+           .shorthand()
            .crossed()
            .probes({0, 1, 2, 3, 5, 8, 12, 20}),
        K::integer("max_leaf_size", &KdTreeParams::max_leaf_size, 1, INT_MAX, "primitives",
                   "A cell holding this many primitives or fewer is a leaf.")
+           .shorthand("--leaf-size")
            .crossed()
            .probes({1, 2, 4, 8, 16}),
        placement_knob(&KdTreeParams::placement).crossed(),
        K::choice("split", &KdTreeParams::split, {{"midpoint", SplitRule::Midpoint}, {"sah", SplitRule::Sah}},
                  "How split planes are chosen: the longest axis's midpoint (the paper), or the SAH.")
+           .shorthand()
            .variant()
            .crossed(),
        K::number("traversal_cost", &KdTreeParams::traversal_cost, 0.0, 1e6, "SAH cost units",

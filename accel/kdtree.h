@@ -7,7 +7,7 @@
 
 #include "geometry.h"
 #include "interval_slack.h"
-#include "knob_table.h"
+#include "knobs/knob_table.h"
 #include "leaf_loop.h"
 #include "placement.h"
 #include "ray_setup.h"
@@ -62,7 +62,7 @@ struct KdTreeParams {
   float empty_bonus = 0.2f;
 
   /// Name, range, unit and doc line of every knob above.
-  static const KnobTable<KdTreeParams>& knobs();
+  static const knobs::KnobTable<KdTreeParams>& knobs();
 };
 
 /// pbrt-v3's 8-byte node. An inner node's lower child follows it; its upper child's index is
@@ -104,7 +104,7 @@ class KdTree {
   static constexpr int kStackSize = 64;
 
   KdTree() = default;
-  /// Builds over `boxes` (primitive id = index). Throws ConfigError for a bad knob or when the
+  /// Builds over `boxes` (primitive id = index). Throws knobs::ConfigError for a bad knob or when the
   /// build would pass the memory budget of `limits`.
   KdTree(std::span<const Aabb> boxes, const KdTreeParams& params, const BuildLimits& limits);
   explicit KdTree(std::span<const Aabb> boxes, const KdTreeParams& params = {});

@@ -61,7 +61,7 @@ class KdTreeBuilder {
   void build(int depth, const Aabb& cell, std::size_t begin, std::size_t end, int bad_refines) {
     const std::uint32_t node = std::uint32_t(nodes_.size());
     if (node > KdNode::kMaxIndex)
-      throw ConfigError("kdtree: more than 2^30 nodes; lower max_depth or raise max_leaf_size");
+      throw knobs::ConfigError("kdtree: more than 2^30 nodes; lower max_depth or raise max_leaf_size");
     budget_.reserve_more(nodes_, 1);
     nodes_.emplace_back();
     if (every_level_) {
@@ -172,7 +172,7 @@ class KdTreeBuilder {
 
 void KdTree::build(std::span<const Aabb> boxes, std::uint64_t budget_bytes) {
   if (boxes.size() > KdNode::kMaxIndex)
-    throw ConfigError("kdtree: at most 2^30 - 1 primitives");
+    throw knobs::ConfigError("kdtree: at most 2^30 - 1 primitives");
   bounds_ = {};
   for (const Aabb& b : boxes) bounds_.grow(b);
   if (bounds_.is_empty()) bounds_ = {Vec3(0.0f), Vec3(0.0f)};

@@ -3,7 +3,7 @@
 
 #include "build_limits.h"
 #include "geometry.h"
-#include "knob_table.h"
+#include "knobs/knob_table.h"
 #include "stats.h"
 
 #include <cstdint>
@@ -14,8 +14,8 @@ namespace accel {
 /// The naive structure has no knobs.
 struct NaiveParams {
   /// The empty table: any knob is an error.
-  static const KnobTable<NaiveParams>& knobs() {
-    static const KnobTable<NaiveParams> table("naive", {});
+  static const knobs::KnobTable<NaiveParams>& knobs() {
+    static const knobs::KnobTable<NaiveParams> table("naive", {});
     return table;
   }
 };

@@ -7,16 +7,18 @@
 
 namespace accel {
 
-const KnobTable<OctreeParams>& OctreeParams::knobs() {
-  using K = Knob<OctreeParams>;
-  static const KnobTable<OctreeParams> table(
+const knobs::KnobTable<OctreeParams>& OctreeParams::knobs() {
+  using K = knobs::Knob<OctreeParams>;
+  static const knobs::KnobTable<OctreeParams> table(
       "octree",
       {K::integer("max_depth", &OctreeParams::max_depth, 0, 64, "levels",
                   "Deepest level a cell may be split to (root = 0); a cell there is a leaf.")
+           .shorthand()
            .crossed()
            .probes({0, 1, 2, 3, 5, 8, 12, 20}),
        K::integer("max_leaf_size", &OctreeParams::max_leaf_size, 1, INT_MAX, "primitives",
                   "A cell holding more primitives than this is split (unless max_depth stops it).")
+           .shorthand("--leaf-size")
            .crossed()
            .probes({1, 2, 4, 8, 16}),
        placement_knob(&OctreeParams::placement).crossed()});

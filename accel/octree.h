@@ -5,7 +5,7 @@
 
 #include "geometry.h"
 #include "interval_slack.h"
-#include "knob_table.h"
+#include "knobs/knob_table.h"
 #include "leaf_loop.h"
 #include "placement.h"
 #include "ray_setup.h"
@@ -38,7 +38,7 @@ struct OctreeParams {
   Placement placement = Placement::Leaves;
 
   /// Name, range, unit and doc line of every knob above.
-  static const KnobTable<OctreeParams>& knobs();
+  static const knobs::KnobTable<OctreeParams>& knobs();
 };
 
 /// One stored cell. Its geometry is implicit: child c of a cell is the octant whose bit k is 1
@@ -80,7 +80,7 @@ class Octree {
   static constexpr int kStackSize = 7 * 64 + 8;
 
   Octree() = default;
-  /// Builds over `boxes` (primitive id = index). Throws ConfigError for a bad knob or when the
+  /// Builds over `boxes` (primitive id = index). Throws knobs::ConfigError for a bad knob or when the
   /// build would pass the memory budget of `limits`.
   Octree(std::span<const Aabb> boxes, const OctreeParams& params, const BuildLimits& limits);
   explicit Octree(std::span<const Aabb> boxes, const OctreeParams& params = {});

@@ -197,7 +197,7 @@ Aabb root_cube(std::span<const Aabb> boxes) {
 
 void Octree::build(std::span<const Aabb> boxes, std::uint64_t budget_bytes) {
   if (boxes.size() >= std::numeric_limits<std::uint32_t>::max())
-    throw ConfigError("octree: at most 2^32 - 2 primitives");
+    throw knobs::ConfigError("octree: at most 2^32 - 2 primitives");
   root_cell_ = root_cube(boxes);
   stats_ = {};
   OctreeBuilder(boxes, params_, budget_bytes, nodes_, prim_ids_, stats_).run(root_cell_);

@@ -2,7 +2,7 @@
 // Where a tree stores a primitive that overlaps several children: the paper's two policies,
 // shared by the octree and the kd-tree.
 
-#include "knob_table.h"
+#include "knobs/knob_table.h"
 
 #include <cstdint>
 
@@ -23,13 +23,14 @@ inline const char* placement_name(Placement p) {
 
 /// The `placement` knob of a tree whose parameter struct P stores it in `member`.
 template <class P>
-Knob<P> placement_knob(Placement P::*member) {
-  return Knob<P>::choice("placement", member,
+knobs::Knob<P> placement_knob(Placement P::*member) {
+  return knobs::Knob<P>::choice("placement", member,
                          {{placement_name(Placement::Leaves), Placement::Leaves},
                           {placement_name(Placement::EveryLevel), Placement::EveryLevel}},
                          "Where a primitive overlapping several children is stored: in every leaf it "
                          "overlaps, or once, at the node whose split it straddles (the paper's fix).")
-      .variant();
+      .variant()
+      .shorthand();
 }
 
 }  // namespace accel

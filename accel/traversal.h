@@ -14,7 +14,7 @@
 
 #include "build_limits.h"
 #include "geometry.h"
-#include "knob_table.h"
+#include "knobs/knob_table.h"
 #include "stats.h"
 
 #include <concepts>
@@ -38,7 +38,7 @@ concept TraversalStructure =
     requires(const S& s, Ray& ray, const Ray& const_ray, LeafFnArchetype& leaf, TraversalCounters* c) {
       { S::kName } -> std::convertible_to<const char*>;
       { S::kSummary } -> std::convertible_to<const char*>;
-      { S::Params::knobs() } -> std::same_as<const KnobTable<typename S::Params>&>;
+      { S::Params::knobs() } -> std::same_as<const knobs::KnobTable<typename S::Params>&>;
       { s.params() } -> std::same_as<const typename S::Params&>;
       { s.stats() } -> std::same_as<const BuildStats&>;
       { s.template intersect<false>(ray, leaf, c) } -> std::same_as<void>;

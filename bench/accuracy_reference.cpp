@@ -56,7 +56,7 @@ Rendered render(const tracer::Scene& scene, const accel::AnyAccel& built, const 
 }
 
 json with_seed(json params, std::uint64_t seed) {
-  params["seed"] = seed;
+  params[knobs::kSeedKnob] = seed;
   return params;
 }
 
@@ -186,7 +186,7 @@ AccuracyReference obtain_reference(const tracer::Scene& scene, const accel::AnyA
   if (!spec.check.empty()) {
     json check = spec.params;
     check.update(spec.check);
-    if (spec.stochastic) check["seed"] = kReferenceSeedA;
+    if (spec.stochastic) check[knobs::kSeedKnob] = kReferenceSeedA;
     const Rendered c = render(scene, built, spec.integrator, check, spec.width, spec.height, options.threads);
     renders.push_back({{"what", "check " + spec.check.dump()}, {"render_ms", c.ms}, {"rays", c.rays}});
     const tracer::ImageError d = tracer::image_error(c.image, a.image, eps);

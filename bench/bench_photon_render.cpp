@@ -17,6 +17,7 @@
 //   build/bin/bench_photon_render --benchmark_filter=PhotonTrace
 
 #include "photon/photon_integrator.h"
+#include "photon/photon_params.h"
 #include "validated_main.h"
 
 #include "scenes_gen/generators.h"
@@ -63,8 +64,7 @@ bool same(const std::vector<photon::Photon>& a, const std::vector<photon::Photon
 bool validate(benchmark::State& state, const Prepared& p, const tracer::RenderOptions& o) {
   const auto boxes = p.scene.geometry.primitive_bounds();
   const accel::AnyAccel naive = accel::make_accel("naive", json::object(), boxes);
-  photon::PhotonParams params;
-  from_json(p.knobs, params);
+  const photon::PhotonParams params = p.knobs.get<photon::PhotonParams>();
   const photon::PhotonMaps a = photon::make_photon_maps(p.scene, naive, params, o, true);
   const photon::PhotonMaps b = photon::make_photon_maps(p.scene, p.bvh, params, o, true);
   const bool maps_ok = same(a.global_pass.photons, b.global_pass.photons) &&
@@ -80,13 +80,16 @@ bool validate(benchmark::State& state, const Prepared& p, const tracer::RenderOp
 }
 
 void bm_trace(benchmark::State& state, std::string scene, photon::PhotonPass pass) {
-  const Prepared p = prepare(scene, {{"global_photons", 100000}, {"caustic_photons", 100000}});
+  photon::PhotonParams maps;
+  maps.global_photons = maps.caustic_photons = 100000;
+  const Prepared p = prepare(scene, photon::PhotonParams::knobs().changed_json(maps));
+  const photon::PhotonParams knobs = p.knobs.get<photon::PhotonParams>();
   photon::PassOptions o;
   o.pass = pass;
   o.target = 100000;
   o.threads = 1;
-  o.max_depth = p.knobs["max_photon_depth"].get<int>();
-  o.seed = p.knobs["seed"].get<std::uint64_t>();
+  o.max_depth = knobs.max_photon_depth;
+  o.seed = knobs.seed;
   {
     const auto boxes = p.scene.geometry.primitive_bounds();
     const accel::AnyAccel naive = accel::make_accel("naive", json::object(), boxes);
@@ -158,8 +161,10 @@ void register_benchmarks() {
                                std::string("glass_caustic"), json::object())
       ->Unit(benchmark::kMillisecond)
       ->UseRealTime();
+  photon::PhotonParams sharpest;
+  sharpest.cone_k = 1.0f;
   benchmark::RegisterBenchmark("PhotonRender/fig6_ring_cone_k1", bm_render, std::string("ring"),
-                               json{{"cone_k", 1.0}})
+                               photon::PhotonParams::knobs().changed_json(sharpest))
       ->Unit(benchmark::kMillisecond)
       ->UseRealTime();
 }

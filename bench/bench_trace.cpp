@@ -314,7 +314,7 @@ bool build_or_skip(benchmark::State& state, const std::string& name, const json&
     out = accel::make_accel(name, knobs, bs.boxes);
     tracer::attach_geometry(out, bs.scene.geometry);
     return true;
-  } catch (const accel::ConfigError& e) {
+  } catch (const knobs::ConfigError& e) {
     state.SkipWithError(e.what());
     return false;
   }

@@ -1,6 +1,7 @@
 // `accelbench render`: load a scene, build a structure over it, render, report the times and
 // the ray counts, and write the image (PNG, PFM) and statistics (JSON).
 
+#include "cli_shorthand.h"
 #include "cli_util.h"
 #include "commands.h"
 #include "integrators.h"
@@ -35,25 +36,17 @@ struct RenderFlags {
   std::string stats;
   std::string resolution;
   std::string accel;
-  std::string placement;
-  std::string split;
   std::string max_memory;
   int threads = 0;
   float exposure = 0.0f;
-  int max_depth = 0;
-  int leaf_size = 0;
+  ShorthandValues structure_flags;   ///< --max-depth, --leaf-size, ...: the tables' shorthands.
+  ShorthandValues integrator_flags;  ///< --precision: the integrators' shorthands.
   std::vector<std::string> knobs;  ///< --knob NAME=VALUE, any knob of the structure.
   std::string integrator;  ///< Integrator name (bench/integrators.h); "" = the scene's, or whitted.
   bool spd = false;        ///< Shorthand for --integrator spd.
   std::vector<std::string> knob_items;  ///< --param NAME=VALUE: the integrator's knobs.
-  /// Integrator knob precision: float, or double (the naive reference in double); "" = float.
-  std::string precision;
   /// auto | mixed: primitive dispatch (mixed measures the fast path).
   std::string dispatch = "auto";
-  CLI::Option* max_depth_opt = nullptr;
-  CLI::Option* leaf_size_opt = nullptr;
-  CLI::Option* placement_opt = nullptr;
-  CLI::Option* split_opt = nullptr;
 };
 
 std::string default_accel() {
@@ -67,15 +60,11 @@ void require_extension(const std::string& path, const char* ext, const std::stri
 }
 
 /// Only the knobs the user gave, under the factory's names; the factory validates them with the
-/// knob table's messages. The named flags are shorthands for --knob.
+/// knob table's messages. The shorthand flags stand for --knob.
 nlohmann::json knob_params(const RenderFlags& f) {
-  nlohmann::json params = nlohmann::json::object();
-  if (f.max_depth_opt->count()) params["max_depth"] = f.max_depth;
-  if (f.leaf_size_opt->count()) params["max_leaf_size"] = f.leaf_size;
-  if (f.placement_opt->count()) params["placement"] = f.placement;
-  if (f.split_opt->count()) params["split"] = f.split;
+  nlohmann::json params = shorthand_knobs(f.structure_flags);
   for (const std::string& text : f.knobs) {
-    auto [name, value] = accel::parse_knob_assignment(text);
+    auto [name, value] = knobs::parse_knob_assignment(text);
     if (params.contains(name))
       throw std::runtime_error("--knob: '" + name + "' is given twice");
     params[name] = std::move(value);
@@ -83,10 +72,10 @@ nlohmann::json knob_params(const RenderFlags& f) {
   return params;
 }
 
-/// The integrator knobs of --param and --precision.
+/// The integrator knobs of --param and the integrators' shorthand flags (--precision).
 nlohmann::json integrator_overrides(const RenderFlags& f) {
   nlohmann::json knobs = parse_knob_items(f.knob_items, "--param");
-  if (!f.precision.empty()) knobs["precision"] = f.precision;
+  knobs.update(shorthand_knobs(f.integrator_flags, knobs));
   return knobs;
 }
 
@@ -171,9 +160,6 @@ int run_render(const RenderFlags& f) {
 
   std::printf("integrator %s: %s\n", std::string(integrator.name).c_str(),
               std::string(integrator.description).c_str());
-  if (f.precision == "double")
-    std::printf("precision double: the naive loop over every primitive in double; the structure "
-                "is not used\n");
   if (!setup.params.empty()) std::printf("knobs    %s\n", setup.params.dump().c_str());
   std::fflush(stdout);
   const tracer::RenderResult result =
@@ -259,16 +245,7 @@ void add_render_command(CLI::App& app, int& exit_code) {
         for (const std::string& n : accel::accel_names()) s += (s.empty() ? "" : ", ") + n;
         return s;
       }());
-  flags->max_depth_opt =
-      cmd->add_option("--max-depth", flags->max_depth,
-                      "Structure knob max_depth: deepest tree level (not the recursion depth)");
-  flags->leaf_size_opt =
-      cmd->add_option("--leaf-size", flags->leaf_size,
-                      "Structure knob max_leaf_size: primitives per leaf before a split");
-  flags->placement_opt = cmd->add_option("--placement", flags->placement,
-                                         "Structure knob placement: leaves | every_level");
-  flags->split_opt =
-      cmd->add_option("--split", flags->split, "Structure knob split: midpoint | sah");
+  add_shorthand_flags(*cmd, structure_shorthand_flags(), flags->structure_flags, /*list=*/false);
   cmd->add_option("--knob", flags->knobs,
                   "Any structure knob as NAME=VALUE, repeatable (see `accelbench structures`)");
   cmd->add_option(
@@ -286,10 +263,7 @@ void add_render_command(CLI::App& app, int& exit_code) {
   cmd->add_flag("--spd", flags->spd,
                 "Shorthand for --integrator spd: the SPD test rules (rays at pixel corners, tree "
                 "depth 5, NFF shading; for .nff scenes)");
-  cmd->add_option("--precision", flags->precision,
-                  "Integrator knob precision: float (default) | double (the naive loop in double, "
-                  "the float renderer's reference; the structure is not used)")
-      ->check(CLI::IsMember({"float", "double"}));
+  add_shorthand_flags(*cmd, integrator_shorthand_flags(), flags->integrator_flags, /*list=*/false);
   cmd->add_option(
          "--dispatch", flags->dispatch,
          "Primitive dispatch: auto (sphere-only scenes take the spheres-only path) | mixed")

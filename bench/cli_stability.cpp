@@ -48,7 +48,7 @@ int run(const StabilityFlags& f) {
   o.scene_label = f.scene;
   o.integrator = &integrator_named(f.spd ? "spd" : f.integrator.empty() ? "whitted" : f.integrator,
                                    "--integrator");
-  o.integrator->params({{"precision", "double"}});  // one that lacks the knob fails here
+  o.integrator->params({{tracer::kPrecisionKnob, tracer::precision_name(tracer::Precision::Double)}});  // one that lacks the knob fails here
   parse_resolution(f.resolution, "--resolution", o.width, o.height);
   o.structures = parse_checked_structures(f.accel.empty() ? default_structures() : f.accel, "--accel");
   o.variants = select_variants(f.variants, "--variants");

@@ -2,6 +2,7 @@
 // JSON Lines file row by row and a results JSON at the end.
 
 #include "commands.h"
+#include "cli_shorthand.h"
 #include "cli_util.h"
 #include "cpu_pinning.h"
 #include "sweep_definition.h"
@@ -9,7 +10,7 @@
 #include "integrators.h"
 
 #include "accel/accel.h"
-#include "accel/knob_table.h"
+#include "knobs/knob_table.h"
 
 #include <CLI/CLI.hpp>
 
@@ -30,8 +31,8 @@ namespace {
 
 struct SweepFlags {
   std::string config;
-  std::vector<std::string> scenes, accel, placement, split;
-  std::vector<int> max_depth, leaf_size;
+  std::vector<std::string> scenes, accel;
+  ShorthandValues structure_flags;  ///< --max-depth 4,8,12 ...: the tables' shorthands.
   std::vector<std::string> knobs;  ///< --knob NAME=V1[,V2...], any structure knob.
   int repetitions = -1, warmup = -1, threads = -1;
   std::string resolution, out, jsonl, shard_text = "0/1", max_memory;
@@ -39,9 +40,6 @@ struct SweepFlags {
   std::vector<std::string> integrator_knobs;  ///< --param NAME=V1,V2,...
   bool resume = false, quiet = false, spd = false, list = false, no_pin = false;
 };
-
-std::vector<nlohmann::json> to_values(const std::vector<int>& v) { return {v.begin(), v.end()}; }
-std::vector<nlohmann::json> to_values(const std::vector<std::string>& v) { return {v.begin(), v.end()}; }
 
 /// A knob flag replaces that knob's values everywhere in the definition.
 void override_knob(SweepDefinition& d, const std::string& knob, const std::vector<nlohmann::json>& values) {
@@ -105,17 +103,18 @@ SweepDefinition definition_from_flags(const SweepFlags& f) {
     }
     d.structures = kept;
   }
-  override_knob_flag(d, "--max-depth", "max_depth", to_values(f.max_depth));
-  override_knob_flag(d, "--leaf-size", "max_leaf_size", to_values(f.leaf_size));
-  override_knob_flag(d, "--placement", "placement", to_values(f.placement));
-  override_knob_flag(d, "--split", "split", to_values(f.split));
+  for (const ShorthandFlag& s : structure_shorthand_flags()) {
+    std::vector<nlohmann::json> values;
+    for (const std::string& text : f.structure_flags.at(s.knob)) values.push_back(knobs::knob_value_from_text(text));
+    override_knob_flag(d, s.flag, s.knob, values);
+  }
   for (const std::string& text : f.knobs) {
-    const std::string name = accel::parse_knob_assignment(text).first;
+    const std::string name = knobs::parse_knob_assignment(text).first;
     std::vector<nlohmann::json> values;
     const std::string list = text.substr(text.find('=') + 1);
     for (std::size_t at = 0;;) {
       const std::size_t comma = list.find(',', at);
-      values.push_back(accel::knob_value_from_text(list.substr(at, comma - at)));
+      values.push_back(knobs::knob_value_from_text(list.substr(at, comma - at)));
       if (comma == std::string::npos) break;
       at = comma + 1;
     }
@@ -222,10 +221,7 @@ void add_sweep_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--scenes", flags->scenes, "Scenes: generator, generator:count, or scene file (.json, .nff)")
       ->delimiter(',');
   cmd->add_option("--accel", flags->accel, "Structures to sweep, e.g. naive,octree,kdtree")->delimiter(',');
-  cmd->add_option("--max-depth", flags->max_depth, "max_depth values, e.g. 4,8,12")->delimiter(',');
-  cmd->add_option("--leaf-size", flags->leaf_size, "max_leaf_size values, e.g. 1,2,4,8")->delimiter(',');
-  cmd->add_option("--placement", flags->placement, "placement values: leaves,every_level")->delimiter(',');
-  cmd->add_option("--split", flags->split, "kd-tree split values: midpoint,sah")->delimiter(',');
+  add_shorthand_flags(*cmd, structure_shorthand_flags(), flags->structure_flags, /*list=*/true);
   cmd->add_option("--knob", flags->knobs,
                   "Values of any structure knob, NAME=V1[,V2...], repeatable (see `accelbench structures`)");
   cmd->add_option("--repetitions", flags->repetitions, "Timed renders per configuration (median reported)")

@@ -2,6 +2,7 @@
 // flat the optimum is.
 
 #include "commands.h"
+#include "cli_shorthand.h"
 #include "cli_util.h"
 #include "sweep_definition.h"
 #include "sweep_results.h"
@@ -23,7 +24,10 @@ namespace bench {
 namespace {
 
 struct TuneFlags {
-  std::string scene, accel = "kdtree", resolution = "320x240", placement, split, json_out, max_memory = "0";
+  std::string scene, accel = "kdtree", resolution = "320x240", json_out, max_memory = "0";
+  /// The choice knobs' shorthand flags (--placement, --split): held fixed while the tree's
+  /// size knobs are tuned.
+  ShorthandValues held;
   int threads = 1, repetitions = 3, warmup = 1;
   std::string seed = "1";
   AccuracyTuneFlags accuracy;  ///< --max-error / --max-time: choose accuracy knobs instead.
@@ -37,6 +41,15 @@ std::string knobs_text(const TunePoint& p) {
 
 std::string range_text(int lo, int hi) {
   return lo == hi ? std::to_string(lo) : std::to_string(lo) + "-" + std::to_string(hi);
+}
+
+/// The shorthand flags tune holds fixed: the structures' choice knobs (the size knobs it tunes
+/// are numbers).
+std::vector<ShorthandFlag> held_flags() {
+  std::vector<ShorthandFlag> out;
+  for (ShorthandFlag& s : structure_shorthand_flags())
+    if (s.choice) out.push_back(std::move(s));
+  return out;
 }
 
 /// Every flag checked before anything is measured: a bad one is the only line of output.
@@ -61,17 +74,17 @@ TuneOptions options_from_flags(const TuneFlags& f, SceneSpec& spec) {
     throw SweepError("--accel: '" + f.accel + "' cannot be built here (known: " + known + ")");
   }
   // A held knob is checked by the factory itself, over no primitives.
-  for (const auto& [flag, knob, value] : {std::tuple{"--placement", "placement", &f.placement},
-                                          std::tuple{"--split", "split", &f.split}}) {
-    if (value->empty()) continue;
-    if (std::find(knobs->begin(), knobs->end(), knob) == knobs->end())
-      throw SweepError(std::string(flag) + ": " + f.accel + " has no knob '" + knob + "'");
+  for (const ShorthandFlag& s : held_flags()) {
+    const std::vector<std::string>& given = f.held.at(s.knob);
+    if (given.empty()) continue;
+    if (std::find(knobs->begin(), knobs->end(), s.knob) == knobs->end())
+      throw SweepError(s.flag + ": " + f.accel + " has no knob '" + s.knob + "'");
     try {
-      accel::make_accel(f.accel, {{knob, *value}}, {});
+      accel::make_accel(f.accel, {{s.knob, given.back()}}, {});
     } catch (const std::exception& e) {
-      throw SweepError(std::string(flag) + ": " + e.what());
+      throw SweepError(s.flag + ": " + e.what());
     }
-    o.fixed[knob] = *value;
+    o.fixed[s.knob] = given.back();
   }
   return o;
 }
@@ -165,8 +178,7 @@ void add_tune_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--warmup", flags->warmup, "Untimed renders before them")
       ->check(CLI::Range(0, 1000))
       ->capture_default_str();
-  cmd->add_option("--placement", flags->placement, "Hold placement fixed: leaves or every_level");
-  cmd->add_option("--split", flags->split, "Hold the kd-tree split rule fixed: midpoint or sah");
+  add_shorthand_flags(*cmd, held_flags(), flags->held, /*list=*/false);
   cmd->add_option("--max-memory", flags->max_memory, "Build memory budget, e.g. 512M or 2G (0 = 25% of RAM)");
   cmd->add_option("--seed", flags->seed, "Generator seed, an integer in [0, 2^64-1]")->capture_default_str();
   cmd->add_option("--json", flags->json_out, "Also write every point as JSON to this file");

@@ -16,6 +16,7 @@ void add_merge_command(CLI::App& app, int& exit_code);
 void add_convert_command(CLI::App& app, int& exit_code);
 void add_fronts_command(CLI::App& app, int& exit_code);
 void add_structures_command(CLI::App& app, int& exit_code);
+void add_integrators_command(CLI::App& app, int& exit_code);
 void add_stability_command(CLI::App& app, int& exit_code);
 
 }  // namespace bench

@@ -110,7 +110,7 @@ ReferenceSpec group_reference(const std::string& integrator, const std::vector<s
     if (!row)
       throw SweepError("integrator " + integrator + " has no accuracy knob '" + knob + "' (its accuracy knobs: " +
                        accuracy_knob_names(integrator) + ")");
-    const std::string ref_integrator = row->reference_integrator.empty() ? integrator : std::string(row->reference_integrator);
+    const std::string& ref_integrator = row->reference_integrator;
     if (!chosen.empty() && chosen != ref_integrator)
       throw SweepError("knobs of group " + group_name(group) + " have references from different integrators (" +
                        chosen + ", " + ref_integrator + "); vary them in separate groups");
@@ -121,8 +121,8 @@ ReferenceSpec group_reference(const std::string& integrator, const std::vector<s
       for (const auto& [k, v] : fixed.items())
         if (known.contains(k)) spec.params[k] = v;
     }
-    spec.params.update(json::parse(row->reference));
-    if (*row->check) spec.check.update(json::parse(row->check));
+    spec.params.update(row->reference);
+    spec.check.update(row->check);
     spec.stochastic = spec.stochastic || row->stochastic_reference;
   }
   spec.integrator = chosen;
@@ -139,13 +139,12 @@ ReferenceSpec group_reference(const std::string& integrator, const std::vector<s
       throw SweepError(std::string("--reference-set: ") + e.what());
     }
   }
-  if (spec.stochastic && !integrator_named(chosen, "reference").params(json::object()).contains("seed"))
+  if (spec.stochastic && !integrator_named(chosen, "reference").params(json::object()).contains(knobs::kSeedKnob))
     throw SweepError("reference integrator " + chosen + " has no seed knob for independent halves");
-  // Progressive photon mapping's error is not all noise: the blur its radius has not yet shrunk
-  // away is a bias that two halves share. It falls as passes^-1/3 (as R^2 does, alpha 2/3), so a
-  // render with 1/8 of the passes has twice the bias, and its distance from the reference
-  // estimates the reference's own bias (with both renders' noise on top: an overestimate).
-  if (chosen == "ppm") spec.check = {{"passes", std::max(1, spec.params.value("passes", 1) / 8)}};
+  // A reference whose error is not all noise (progressive photon mapping's shrinking radius)
+  // names the weaker render that estimates its bias.
+  if (const auto bias_check = integrator_named(chosen, "reference").bias_check)
+    spec.check = bias_check(spec.params);
   return spec;
 }
 
@@ -182,7 +181,7 @@ SweepDefinition fronts_definition(const FrontsRequest& r) {
       if (r.settings.fixed.contains(knob))
         throw SweepError("--set: knob '" + knob + "' is both varied (--knobs) and fixed (--set)");
       const auto given = r.values.find(knob);
-      std::vector<json> values = given != r.values.end() ? given->second : default_values(*row);
+      std::vector<json> values = given != r.values.end() ? given->second : row->values;
       if (values.empty()) throw SweepError("--values: knob '" + knob + "' has an empty range");
       for (const json& v : values) {
         try {
@@ -226,7 +225,7 @@ FrontsInspector::FrontsInspector(const SweepDefinition& definition, ReferenceOpt
       width_(definition.width),
       height_(definition.height) {
   options_.epsilon = settings_.epsilon;
-  has_seed_ = integrator_named(integrator_, "integrator").params(json::object()).contains("seed");
+  has_seed_ = integrator_named(integrator_, "integrator").params(json::object()).contains(knobs::kSeedKnob);
 }
 
 const AccuracyReference& FrontsInspector::reference(const tracer::Scene& scene, const accel::AnyAccel& built,
@@ -275,12 +274,12 @@ void FrontsInspector::operator()(const tracer::Scene& scene, const accel::AnyAcc
   // The split into bias and variance over seeds, for knobs whose reference is itself stochastic
   // (spp, photon counts): a deterministic reference (depth 64) is rendered with the row's own
   // seed, so comparing other seeds' images with it would count their sampling noise as error.
-  if (settings_.seeds >= 2 && has_seed_ && ref.spec.stochastic && !knobs.count("seed")) {
+  if (settings_.seeds >= 2 && has_seed_ && ref.spec.stochastic && !knobs.count(knobs::kSeedKnob)) {
     // The timed image's knobs (the scene's own under the requested ones) with their defaults
     // filled in: the extra seeds follow on from its seed, whatever the integrator's default.
     const tracer::Integrator& integrator = integrator_named(mo.integrator, "integrator");
     const json timed = integrator.params(scene_integrator_params(scene, mo.integrator, mo.integrator_params));
-    const std::uint64_t base = timed.value("seed", std::uint64_t(0));
+    const std::uint64_t base = timed.value(knobs::kSeedKnob, std::uint64_t(0));
     tracer::PixelMoments moments;
     moments.add(image);
     bool stochastic = true;
@@ -290,7 +289,7 @@ void FrontsInspector::operator()(const tracer::Scene& scene, const accel::AnyAcc
     ro.height = mo.height;
     for (int s = 1; s < settings_.seeds; ++s) {
       json p = timed;
-      p["seed"] = base + std::uint64_t(s);
+      p[knobs::kSeedKnob] = base + std::uint64_t(s);
       const auto r0 = Clock::now();
       const tracer::RenderResult r = tracer::render(scene, built, ro, integrator, p);
       rendering_s += seconds_since(r0);

@@ -82,6 +82,20 @@ nlohmann::json parse_knob_items(const std::vector<std::string>& items, const std
   return knobs;
 }
 
+nlohmann::json integrators_json() {
+  nlohmann::json out = nlohmann::json::array();
+  for (const tracer::Integrator* i : table())
+    out.push_back({{"name", i->name}, {"description", i->description}, {"knobs", i->knob_table().describe()}});
+  return out;
+}
+
+std::string integrators_markdown() {
+  std::string md;
+  for (const tracer::Integrator* i : table())
+    md += "### `" + std::string(i->name) + "`\n\n" + std::string(i->description) + ".\n\n" + i->knob_table().markdown() + "\n";
+  return md;
+}
+
 std::string integrator_names() {
   std::string s;
   for (const tracer::Integrator* i : table()) s += (s.empty() ? "" : ", ") + std::string(i->name);

@@ -27,6 +27,12 @@ const tracer::Integrator& integrator_named(std::string_view name, const std::str
 /// Every integrator's name, comma-separated, for --help and error messages.
 std::string integrator_names();
 
+/// The table as data: per integrator its name, description and knob table (describe()).
+nlohmann::json integrators_json();
+
+/// Every integrator's knob reference as Markdown (generated into docs/tracer.md).
+std::string integrators_markdown();
+
 /// The integrator of a render and its knobs, every default filled in.
 struct IntegratorSetup {
   const tracer::Integrator* integrator = nullptr;  ///< The table's row.

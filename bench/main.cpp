@@ -32,6 +32,7 @@ int main(int argc, char** argv) {
   bench::add_convert_command(app, exit_code);
   bench::add_fronts_command(app, exit_code);
   bench::add_structures_command(app, exit_code);
+  bench::add_integrators_command(app, exit_code);
   bench::add_stability_command(app, exit_code);
   try {
     app.parse(argc, argv);

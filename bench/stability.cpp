@@ -79,7 +79,7 @@ Rendered render_once(const tracer::Scene& scene, const accel::AnyAccel& structur
   ro.width = o.width;
   ro.height = o.height;
   ro.threads = o.threads;
-  const json knobs = {{"precision", precision == tracer::Precision::Double ? "double" : "float"}};
+  const json knobs = {{tracer::kPrecisionKnob, tracer::precision_name(precision)}};
   Rendered r;
   r.result = tracer::render(scene, structure, ro, *o.integrator, knobs);
   r.non_finite = tracer::count_non_finite(r.result.image);

@@ -338,7 +338,7 @@ SweepDefinition parse_sweep_definition(const json& j) {
       (void)values;
       try {
         accel::check_knob_name(s.name, k);
-      } catch (const accel::ConfigError& e) {
+      } catch (const knobs::ConfigError& e) {
         fail(child(at, k), e.what());
       }
     }

@@ -1,7 +1,5 @@
 #include "density.h"
 
-#include "accel/params_json.h"
-
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -23,26 +21,24 @@ std::string_view name_of(DensityFilter f) {
   return "?";
 }
 
-void to_json(nlohmann::json& j, const DensityParams& p) {
-  j = {{"filter", std::string(name_of(p.filter))}, {"cone_k", p.cone_k}};
+std::vector<std::pair<std::string, DensityFilter>> density_filter_choices() {
+  std::vector<std::pair<std::string, DensityFilter>> out;
+  for (const auto& [name, filter] : kFilters) out.emplace_back(name, filter);
+  return out;
 }
 
-void from_json(const nlohmann::json& j, DensityParams& p) {
-  accel::KnobReader r("density", j);
-  r.read_enum("filter", p.filter,
-              {{kFilters[0].first, kFilters[0].second},
-               {kFilters[1].first, kFilters[1].second},
-               {kFilters[2].first, kFilters[2].second}});
-  r.read("cone_k", p.cone_k, 1.0f, 1e6f);
-  r.finish();
+const knobs::KnobTable<DensityParams>& DensityParams::knobs() {
+  using K = knobs::Knob<DensityParams>;
+  static const knobs::KnobTable<DensityParams> table(
+      "density", {K::choice("filter", &DensityParams::filter, density_filter_choices(),
+                            "Density-estimation kernel: box, the paper's cone, or biweight.")
+                      .variant(),
+                  K::number("cone_k", &DensityParams::cone_k, 1.0, 1e6, "",
+                            "Cone filter constant: weight 1 - d / (cone_k r); 1 is the sharpest cone.")});
+  return table;
 }
 
-void validate(const DensityParams& p) {
-  if (!(p.cone_k >= 1.0f) || !std::isfinite(p.cone_k))
-    throw accel::ConfigError("density: cone_k must be a finite number >= 1, got " +
-                             nlohmann::json(p.cone_k).dump());
-  if (name_of(p.filter) == "?") throw accel::ConfigError("density: filter is not a known kernel");
-}
+void validate(const DensityParams& p) { DensityParams::knobs().validate(p); }
 
 float estimate_radius2(const Neighbors& found) {
   if (found.empty()) return 0.0f;

@@ -19,10 +19,15 @@
 #include "knn.h"
 #include "photon_map.h"
 
+#include "knobs/knob_table.h"
+
 #include <nlohmann/json.hpp>
 
 #include <cstdint>
+#include <string>
 #include <string_view>
+#include <utility>
+#include <vector>
 
 namespace photon {
 
@@ -39,13 +44,14 @@ struct DensityParams {
   DensityFilter filter = DensityFilter::Cone;
   /// Cone filter constant k, >= 1 (the paper: 1 is the sharpest cone that reaches 0 at r).
   float cone_k = 1.1f;
+
+  static const knobs::KnobTable<DensityParams>& knobs();
 };
 
 std::string_view name_of(DensityFilter f);
-void to_json(nlohmann::json& j, const DensityParams& p);
-/// Reads the knobs; unknown keys, wrong types and out-of-range values throw accel::ConfigError.
-void from_json(const nlohmann::json& j, DensityParams& p);
-/// Throws accel::ConfigError naming the first knob out of range ("density: cone_k ...").
+/// The kernels as knob choices (spelling, value), in display order.
+std::vector<std::pair<std::string, DensityFilter>> density_filter_choices();
+/// Throws knobs::ConfigError naming the first knob out of range ("density: cone_k ...").
 void validate(const DensityParams& p);
 
 /// The squared radius of the disc an estimate divides by (see above), world units squared; 0
@@ -55,7 +61,7 @@ float estimate_radius2(const Neighbors& found);
 /// Flux density (watts per square metre per channel) from the photons `found` in `map`.
 /// Photons arriving from behind `normal` (dot(direction, normal) >= 0) are left out; a zero
 /// normal leaves none out. The photons are summed in order of (distance, original index), so
-/// every tree variant gives the same bits. Reorders `found`. Throws accel::ConfigError for a
+/// every tree variant gives the same bits. Reorders `found`. Throws knobs::ConfigError for a
 /// bad knob.
 Color flux_density(const PhotonMap& map, Neighbors& found, const DensityParams& params,
                    const Vec3& normal);

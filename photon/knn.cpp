@@ -1,7 +1,5 @@
 #include "knn.h"
 
-#include "accel/params_json.h"
-
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -13,48 +11,22 @@ namespace {
 constexpr int kMaxK = 1 << 20;
 }  // namespace
 
-void to_json(nlohmann::json& j, const GatherParams& p) {
-  j = {{"k", p.k},
-       {"max_radius", std::isinf(p.max_radius) ? nlohmann::json("inf") : nlohmann::json(p.max_radius)},
-       {"cull", p.cull},
-       {"cache_distances", p.cache_distances}};
+const knobs::KnobTable<GatherParams>& GatherParams::knobs() {
+  using K = knobs::Knob<GatherParams>;
+  static const knobs::KnobTable<GatherParams> table(
+      "gather",
+      {K::integer("k", &GatherParams::k, 1, kMaxK, "photons", "Photons gathered per lookup."),
+       K::number_or_infinity("max_radius", &GatherParams::max_radius, 0.0, "world units",
+                             "Largest distance searched; \"inf\" searches without bound.")
+           .open_below(),
+       K::boolean("cull", &GatherParams::cull,
+                  "Optimisation 2: reject photons from behind the query's surface before the heap."),
+       K::boolean("cache_distances", &GatherParams::cache_distances,
+                  "Optimisation 3: compute each photon's squared distance once (never changes the answer).")});
+  return table;
 }
 
-void from_json(const nlohmann::json& j, GatherParams& p) {
-  // max_radius is a number > 0, or "inf" for an unbounded search: read here, the rest by the
-  // generic reader.
-  nlohmann::json rest = j;
-  if (rest.is_object() && rest.contains("max_radius")) {
-    const nlohmann::json& v = rest["max_radius"];
-    if (v == "inf") {
-      p.max_radius = std::numeric_limits<float>::infinity();
-    } else if (v.is_number() && v.get<double>() > 0.0 &&
-               v.get<double>() <= std::numeric_limits<float>::max()) {
-      p.max_radius = v.get<float>();
-    } else {
-      throw accel::ConfigError("gather: parameter 'max_radius' must be a number > 0 or \"inf\", got " +
-                               v.dump());
-    }
-    rest.erase("max_radius");
-  }
-  accel::KnobReader r("gather", rest);
-  r.read("k", p.k, 1, kMaxK);
-  r.read("cull", p.cull);
-  r.read("cache_distances", p.cache_distances);
-  r.finish();
-  validate(p);
-}
-
-void validate(const GatherParams& p) {
-  if (p.k < 1 || p.k > kMaxK)
-    throw accel::ConfigError("gather: k must be in [1, " + std::to_string(kMaxK) + "], got " +
-                             std::to_string(p.k));
-  if (!(p.max_radius > 0.0f)) {
-    std::ostringstream s;
-    s << "gather: max_radius must be > 0, got " << p.max_radius;
-    throw accel::ConfigError(s.str());
-  }
-}
+void validate(const GatherParams& p) { GatherParams::knobs().validate(p); }
 
 void to_json(nlohmann::json& j, const GatherCounters& c) {
   const double n = c.lookups ? double(c.lookups) : 1.0;

@@ -7,6 +7,8 @@
 // change the answer returns the same photons, bit for bit. With `cull`, photons arriving from
 // behind the surface (dot(direction, normal) >= 0) are rejected before they reach the heap.
 
+#include "knobs/knob_table.h"
+
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -28,12 +30,12 @@ struct GatherParams {
   /// Optimisation 3: keep each photon's squared distance in the heap entry, computed once; off,
   /// every heap comparison recomputes it from the positions. Never changes the answer.
   bool cache_distances = true;
+
+  static const knobs::KnobTable<GatherParams>& knobs();
 };
 
-void to_json(nlohmann::json& j, const GatherParams& p);
-/// Reads the knobs; unknown keys, wrong types and out-of-range values throw accel::ConfigError.
-void from_json(const nlohmann::json& j, GatherParams& p);
-/// Throws accel::ConfigError naming the first knob out of range ("gather: k must be >= 1, got 0").
+/// Throws knobs::ConfigError naming the first knob out of range ("gather: knob 'k' must be
+/// in [1, 1048576], got 0").
 void validate(const GatherParams& p);
 
 /// One photon found by a gather.

@@ -149,11 +149,11 @@ void check_budget(const PhotonParams& p, const MapNeeds& needs, const accel::Bui
   const int count = global >= caustic ? p.global_photons : p.caustic_photons;
   char msg[256];
   std::snprintf(msg, sizeof msg,
-                "photon: parameter '%s' = %d needs %.1f MiB of photon maps (%.1f MiB in all), "
+                "photon: knob '%s' = %d needs %.1f MiB of photon maps (%.1f MiB in all), "
                 "more than the memory budget of %.1f MiB (--max-memory)",
                 knob, count, double(std::max(global, caustic)) / 1048576.0,
                 double(global + caustic) / 1048576.0, double(budget) / 1048576.0);
-  throw accel::ConfigError(msg);
+  throw knobs::ConfigError(msg);
 }
 
 nlohmann::json map_json(const PassResult& pass, const PhotonMap& map, double build_ms,
@@ -206,11 +206,7 @@ void photon_check(const tracer::Scene& scene, const tracer::RenderOptions& optio
   check_budget(params, needs, options.limits);
 }
 
-nlohmann::json photon_params_json(const nlohmann::json& given) {
-  PhotonParams p;
-  from_json(given, p);
-  return p;
-}
+const knobs::AnyKnobTable& photon_knobs() { return PhotonParams::knobs(); }
 
 tracer::RenderResult render_photon(const tracer::Scene& scene, const accel::AnyAccel& accel,
                                    const tracer::RenderOptions& options,
@@ -328,7 +324,7 @@ const tracer::Integrator& photon_integrator() {
       "photon",
       "photon mapping (the paper's §4): Whitted camera paths, caustics from a caustic map, "
       "indirect light from a global map (read directly, or by final gathering)",
-      photon_params_json, render_photon, photon_summary, photon_check};
+      photon_knobs, render_photon, photon_summary, photon_check};
   return kPhoton;
 }
 

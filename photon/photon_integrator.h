@@ -43,7 +43,7 @@ struct PhotonMaps {
 };
 
 /// Traces and builds the maps `params` asks for over `scene` through `accel`, on `options.threads`
-/// threads, within options.limits (throws accel::ConfigError naming the photon count that does
+/// threads, within options.limits (throws knobs::ConfigError naming the photon count that does
 /// not fit). With `keep_photons` the passes keep their photon arrays (tests compare them).
 PhotonMaps make_photon_maps(const tracer::Scene& scene, const accel::AnyAccel& accel,
                             const PhotonParams& params, const tracer::RenderOptions& options,

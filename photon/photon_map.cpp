@@ -30,18 +30,18 @@ PhotonMap::PhotonMap(std::span<const Photon> photons, const PhotonTreeParams& pa
     : params_(params) {
   validate(params);
   if (photons.size() > std::size_t(std::numeric_limits<std::int32_t>::max()))
-    throw accel::ConfigError("photon map: " + std::to_string(photons.size()) +
+    throw knobs::ConfigError("photon map: " + std::to_string(photons.size()) +
                              " photons, more than the 2^31 - 1 a map can index");
   const std::uint64_t need = peak_bytes(photons.size(), params);
   const std::uint64_t budget = accel::memory_budget_bytes(limits);
   if (need > budget)
-    throw accel::ConfigError("photon map: " + std::to_string(photons.size()) + " photons need " +
+    throw knobs::ConfigError("photon map: " + std::to_string(photons.size()) + " photons need " +
                              std::to_string(need >> 20) + " MiB, more than the memory budget of " +
                              std::to_string(budget >> 20) + " MiB (--max-memory)");
   for (std::size_t i = 0; i < photons.size(); ++i) {
     const Vec3& p = photons[i].position;
     if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
-      throw accel::ConfigError("photon map: photon " + std::to_string(i) +
+      throw knobs::ConfigError("photon map: photon " + std::to_string(i) +
                                " has a non-finite position");
   }
   switch (params.photon_tree) {

@@ -30,7 +30,7 @@ class PhotonMap {
   /// An empty map: every gather finds nothing.
   PhotonMap() = default;
   /// Builds the tree `params` asks for over `photons` (original index = position in the span).
-  /// Throws accel::ConfigError for a bad knob, a photon with a non-finite position, more than
+  /// Throws knobs::ConfigError for a bad knob, a photon with a non-finite position, more than
   /// 2^31 photons, or when the map would need more bytes than `limits` allow.
   PhotonMap(std::span<const Photon> photons, const PhotonTreeParams& params,
             const accel::BuildLimits& limits = {});
@@ -59,7 +59,7 @@ class PhotonMap {
   /// The k nearest photons to `position` within params.max_radius (knn.h); with params.cull,
   /// only photons arriving from the side `normal` points to (a zero normal culls nothing). A
   /// position with a non-finite coordinate finds nothing.
-  /// Count: add the work done to *counters. Throws accel::ConfigError for a bad knob.
+  /// Count: add the work done to *counters. Throws knobs::ConfigError for a bad knob.
   template <bool Count = false>
   void gather(const Vec3& position, const Vec3& normal, const GatherParams& params,
               Neighbors& out, GatherCounters* counters = nullptr) const {

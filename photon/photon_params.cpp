@@ -1,7 +1,5 @@
 #include "photon_params.h"
 
-#include "accel/params_json.h"
-
 #include <limits>
 #include <string>
 
@@ -37,47 +35,56 @@ PhotonTreeParams PhotonParams::tree() const {
   return t;
 }
 
-void to_json(nlohmann::json& j, const PhotonParams& p) {
-  j = {{"global_photons", p.global_photons},
-       {"caustic_photons", p.caustic_photons},
-       {"k", p.k},
-       {"max_radius", p.max_radius ? nlohmann::json(*p.max_radius) : nlohmann::json("auto")},
-       {"filter", std::string(name_of(p.filter))},
-       {"cone_k", p.cone_k},
-       {"max_photon_depth", p.max_photon_depth},
-       {"final_gather_rays", p.final_gather_rays},
-       {"photon_tree", std::string(name_of(p.photon_tree))},
-       {"leaf_size", p.leaf_size},
-       {"cull", p.cull},
-       {"cache_distances", p.cache_distances},
-       {"seed", p.seed},
-       {"skip_unneeded_maps", p.skip_unneeded_maps}};
-}
-
-void from_json(const nlohmann::json& j, PhotonParams& p) {
-  accel::KnobReader r("photon", j);
-  r.read_auto_or_positive("max_radius", p.max_radius);
-  r.read("seed", p.seed);
-  r.read("global_photons", p.global_photons, 1, kMaxPhotons);
-  r.read("caustic_photons", p.caustic_photons, 1, kMaxPhotons);
-  r.read("k", p.k, 1, kMaxK);
-  r.read_enum("filter", p.filter,
-              {{"box", DensityFilter::Box},
-               {"cone", DensityFilter::Cone},
-               {"biweight", DensityFilter::Biweight}});
-  r.read("cone_k", p.cone_k, 1.0f, 1e6f);
-  r.read("max_photon_depth", p.max_photon_depth, 1, 1000);
-  r.read("final_gather_rays", p.final_gather_rays, 0, 65536);
-  r.read_enum("photon_tree", p.photon_tree,
-              {{"balanced", PhotonTreeKind::Balanced},
-               {"sliding_midpoint", PhotonTreeKind::SlidingMidpoint},
-               {"median_buckets", PhotonTreeKind::MedianBuckets},
-               {"brute_force", PhotonTreeKind::BruteForce}});
-  r.read("leaf_size", p.leaf_size, 1, 256);
-  r.read("cull", p.cull);
-  r.read("cache_distances", p.cache_distances);
-  r.read("skip_unneeded_maps", p.skip_unneeded_maps);
-  r.finish();
+const knobs::KnobTable<PhotonParams>& PhotonParams::knobs() {
+  using K = knobs::Knob<PhotonParams>;
+  // Every accuracy knob here shares one front reference that has none of them: progressive
+  // photon mapping run long at its own reference knobs (Integrator::reference_for_others), two
+  // halves with independent seeds, its noise estimated from the halves and its remaining bias
+  // from a render with 1/8 of its passes. Its camera paths are the photon integrator's
+  // (Whitted's), so it converges to what the photon integrator estimates.
+  const auto ppm_front = [](const char* values) { return knobs::Front{values, "ppm", "", "", true}; };
+  static const knobs::KnobTable<PhotonParams> table(
+      "photon",
+      {K::integer("global_photons", &PhotonParams::global_photons, 1, kMaxPhotons, "photons",
+                  "Photons in the global map (indirect light): more is less noise, less blur, slower.")
+           .front(ppm_front("[1000, 3000, 10000, 30000, 100000, 300000, 1000000]")),
+       K::integer("caustic_photons", &PhotonParams::caustic_photons, 1, kMaxPhotons, "photons",
+                  "Photons in the caustic map (light focused by mirrors and glass): more is sharper.")
+           .front(ppm_front("[1000, 3000, 10000, 30000, 100000, 300000, 1000000]")),
+       K::integer("k", &PhotonParams::k, 1, kMaxK, "photons",
+                  "Photons per density estimate (the k of the kNN gather): more is less noise and more blur.")
+           .front(ppm_front("[1, 2, 5, 10, 20, 50, 100, 200, 500]")),
+       K::number_or_auto("max_radius", &PhotonParams::max_radius, 0.0, 3.0e38, "world units",
+                         "Largest gather radius: smaller cuts sparse estimates short (darker, faster); "
+                         "auto = 1/20 of the diagonal of the scene's bounded primitives.")
+           .open_below()
+           .front(ppm_front("[0.01, 0.03, 0.1, 0.3, 1, 3]")),
+       K::choice("filter", &PhotonParams::filter, density_filter_choices(),
+                 "Density-estimation kernel: box, the paper's cone, or biweight.")
+           .variant(),
+       K::number("cone_k", &PhotonParams::cone_k, 1.0, 1e6, "",
+                 "Cone filter constant (filter cone): lower weights near photons more, sharper edges.")
+           .front(ppm_front("[1, 1.1, 1.5, 2, 3, 5, 10]")),
+       K::integer("max_photon_depth", &PhotonParams::max_photon_depth, 1, 1000, "bounces",
+                  "Surface interactions per photon path before it is dropped."),
+       K::integer("final_gather_rays", &PhotonParams::final_gather_rays, 0, 65536, "rays",
+                  "Final-gather rays per diffuse hit (0: read the global map directly).")
+           .front(ppm_front("[0, 1, 4, 16, 64, 256]")),
+       K::choice("photon_tree", &PhotonParams::photon_tree, photon_tree_choices(),
+                 "Photon kd-tree variant; the image is bit-identical across them.")
+           .variant(),
+       K::integer("leaf_size", &PhotonParams::leaf_size, 1, 256, "photons",
+                  "Photons per leaf of the bucket trees (sliding_midpoint, median_buckets)."),
+       K::boolean("cull", &PhotonParams::cull,
+                  "The paper's optimisation 2: reject photons from behind the surface before the heap."),
+       K::boolean("cache_distances", &PhotonParams::cache_distances,
+                  "The paper's optimisation 3: compute each photon's squared distance once (never changes the image)."),
+       K::integer(knobs::kSeedKnob, &PhotonParams::seed, 0, ~0ull, "",
+                  "Seed of every random number of the photon paths and the final gather."),
+       K::boolean("skip_unneeded_maps", &PhotonParams::skip_unneeded_maps,
+                  "Trace only the maps the scene can use (no specular surface: no caustic map; no "
+                  "diffuse surface that reflects: no global map).")});
+  return table;
 }
 
 }  // namespace photon

@@ -57,14 +57,10 @@ struct PhotonParams {
   DensityParams density() const;
   /// The photon-tree knobs.
   PhotonTreeParams tree() const;
+
+  /// The table (JSON in and out, max_radius as "auto" or its number; one-line errors such as
+  /// "photon: knob 'k' must be in [1, 1048576], got 0"; the fronts of the accuracy knobs).
+  static const knobs::KnobTable<PhotonParams>& knobs();
 };
-
-/// Every knob, max_radius as "auto" or its number.
-void to_json(nlohmann::json& j, const PhotonParams& p);
-
-/// Reads the knobs given (an object, possibly empty; others keep their defaults). Throws
-/// accel::ConfigError, one line naming the knob ("photon: parameter 'k' must be in [1, 1048576],
-/// got 0"), for an unknown knob, a wrong type or a value out of range.
-void from_json(const nlohmann::json& j, PhotonParams& p);
 
 }  // namespace photon

@@ -1,7 +1,5 @@
 #include "photon_tree_params.h"
 
-#include "accel/params_json.h"
-
 #include <string>
 
 namespace photon {
@@ -22,34 +20,27 @@ std::string_view name_of(PhotonTreeKind k) {
   return "?";
 }
 
-void to_json(nlohmann::json& j, const PhotonTreeParams& p) {
-  j = {{"photon_tree", std::string(name_of(p.photon_tree))},
-       {"leaf_size", p.leaf_size},
-       {"build_threads", p.build_threads}};
+std::vector<std::pair<std::string, PhotonTreeKind>> photon_tree_choices() {
+  std::vector<std::pair<std::string, PhotonTreeKind>> out;
+  for (const auto& [name, kind] : kKinds) out.emplace_back(name, kind);
+  return out;
 }
 
-void from_json(const nlohmann::json& j, PhotonTreeParams& p) {
-  accel::KnobReader r("photon map", j);
-  r.read_enum("photon_tree", p.photon_tree,
-              {{kKinds[0].first, kKinds[0].second},
-               {kKinds[1].first, kKinds[1].second},
-               {kKinds[2].first, kKinds[2].second},
-               {kKinds[3].first, kKinds[3].second}});
-  r.read("leaf_size", p.leaf_size, 1, kMaxLeafSize);
-  r.read("build_threads", p.build_threads, 0, 256);
-  r.finish();
+const knobs::KnobTable<PhotonTreeParams>& PhotonTreeParams::knobs() {
+  using K = knobs::Knob<PhotonTreeParams>;
+  static const knobs::KnobTable<PhotonTreeParams> table(
+      "photon map",
+      {K::choice("photon_tree", &PhotonTreeParams::photon_tree, photon_tree_choices(),
+                 "Photon kd-tree: the paper's balanced heap, or leaf buckets split at the sliding "
+                 "midpoint or the median, or none (brute force); the image is the same for each.")
+           .variant(),
+       K::integer("leaf_size", &PhotonTreeParams::leaf_size, 1, kMaxLeafSize, "photons",
+                  "Bucket trees: a cell with this many photons or fewer is a leaf."),
+       K::integer("build_threads", &PhotonTreeParams::build_threads, 0, 256, "threads",
+                  "Threads building a balanced tree (0 = one per core); the tree is the same for any count.")});
+  return table;
 }
 
-void validate(const PhotonTreeParams& p) {
-  if (p.leaf_size < 1 || p.leaf_size > kMaxLeafSize)
-    throw accel::ConfigError("photon map: leaf_size must be in [1, " +
-                             std::to_string(kMaxLeafSize) + "], got " +
-                             std::to_string(p.leaf_size));
-  if (p.build_threads < 0 || p.build_threads > 256)
-    throw accel::ConfigError("photon map: build_threads must be in [0, 256], got " +
-                             std::to_string(p.build_threads));
-  if (name_of(p.photon_tree) == "?")
-    throw accel::ConfigError("photon map: photon_tree is not a known variant");
-}
+void validate(const PhotonTreeParams& p) { PhotonTreeParams::knobs().validate(p); }
 
 }  // namespace photon

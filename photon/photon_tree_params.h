@@ -1,10 +1,15 @@
 #pragma once
 // Which tree a photon map is built as (the paper's optimisation 1 is `balanced`), and its knobs.
 
+#include "knobs/knob_table.h"
+
 #include <nlohmann/json.hpp>
 
 #include <cstdint>
+#include <string>
 #include <string_view>
+#include <utility>
+#include <vector>
 
 namespace photon {
 
@@ -36,15 +41,17 @@ struct PhotonTreeParams {
   /// Threads building a balanced tree, 0 = one per core, 1..256; the tree is the same for any
   /// count. (The bucket trees build on one thread.)
   int build_threads = 0;
+
+  static const knobs::KnobTable<PhotonTreeParams>& knobs();
 };
 
 /// The JSON spelling of a variant.
 std::string_view name_of(PhotonTreeKind k);
 
-void to_json(nlohmann::json& j, const PhotonTreeParams& p);
-/// Reads the knobs; unknown keys, wrong types and out-of-range values throw accel::ConfigError.
-void from_json(const nlohmann::json& j, PhotonTreeParams& p);
-/// Throws accel::ConfigError naming the first knob out of range.
+/// The variants as knob choices (spelling, value), in display order.
+std::vector<std::pair<std::string, PhotonTreeKind>> photon_tree_choices();
+
+/// Throws knobs::ConfigError naming the first knob out of range.
 void validate(const PhotonTreeParams& p);
 
 }  // namespace photon

@@ -8,7 +8,6 @@
 #include "tracer/render_frame.h"
 #include "tracer/whitted.h"
 
-#include "accel/params_json.h"
 
 #include <glm/geometric.hpp>
 
@@ -39,8 +38,6 @@ constexpr int kMaxPhotons = std::numeric_limits<int>::max();
 /// The k of a PPM gather: every photon within the radius (a gather that finds this many keeps
 /// the nearest and shrinks the radius to the farthest of them).
 constexpr int kGatherAll = 1 << 20;
-
-[[noreturn]] void fail(const std::string& what) { throw accel::ConfigError("ppm: " + what); }
 
 /// A diffuse surface met by a camera path: where the photon flux density is estimated.
 struct VisiblePoint {
@@ -279,10 +276,21 @@ tracer::RenderResult render_ppm(const tracer::Scene& scene, const accel::AnyAcce
   return result;
 }
 
-nlohmann::json ppm_params_json(const nlohmann::json& given) {
-  PpmParams p;
-  from_json(given, p);
-  return p;
+const knobs::AnyKnobTable& ppm_knobs() { return PpmParams::knobs(); }
+
+// Progressive photon mapping's error is not all noise: the blur its radius has not yet shrunk
+// away is a bias that two halves share. It falls as passes^-1/3 (as R^2 does, alpha 2/3), so a
+// render with 1/8 of the passes has twice the bias, and its distance from the reference
+// estimates the reference's own bias (with both renders' noise on top: an overestimate).
+nlohmann::json ppm_bias_check(const nlohmann::json& reference) {
+  const nlohmann::json full = PpmParams::knobs().complete(reference);
+  PpmParams weaker = full.get<PpmParams>();
+  weaker.passes = std::max(1, weaker.passes / 8);
+  const nlohmann::json weaker_json = PpmParams::knobs().to_json(weaker);
+  nlohmann::json changed = nlohmann::json::object();
+  for (const auto& [knob, value] : weaker_json.items())
+    if (full.at(knob) != value) changed[knob] = value;
+  return changed;
 }
 
 std::string ppm_summary(const nlohmann::json& stats) {
@@ -290,7 +298,7 @@ std::string ppm_summary(const nlohmann::json& stats) {
   std::snprintf(line, sizeof line,
                 "ppm      %d passes: %llu photons stored from %llu paths, %llu visible points, "
                 "mean radius %.4g -> %.4g\n",
-                stats.at("params").at("passes").get<int>(), stats.at("photons_stored").get<unsigned long long>(),
+                stats.at("params").get<PpmParams>().passes, stats.at("photons_stored").get<unsigned long long>(),
                 stats.at("photon_paths").get<unsigned long long>(),
                 stats.at("visible_points").get<unsigned long long>(), stats.at("mean_initial_radius").get<double>(),
                 stats.at("mean_final_radius").get<double>());
@@ -299,33 +307,34 @@ std::string ppm_summary(const nlohmann::json& stats) {
 
 }  // namespace
 
-void to_json(nlohmann::json& j, const PpmParams& p) {
-  j = {{"passes", p.passes},
-       {"photons_per_pass", p.photons_per_pass},
-       {"max_paths", p.max_paths},
-       {"initial_radius", p.initial_radius ? nlohmann::json(*p.initial_radius) : nlohmann::json("auto")},
-       {"initial_photons", p.initial_photons},
-       {"alpha", p.alpha},
-       {"max_photon_depth", p.max_photon_depth},
-       {"seed", p.seed}};
-}
-
-void from_json(const nlohmann::json& j, PpmParams& p) {
-  accel::KnobReader r("ppm", j);
-  r.read_auto_or_positive("initial_radius", p.initial_radius);
-  r.read("seed", p.seed);
-  // alpha lives in (0, 1], an interval open at 0 that read()'s closed ranges cannot state.
-  if (const nlohmann::json* v = r.take("alpha")) {
-    if (!v->is_number() || !(v->get<double>() > 0.0 && v->get<double>() <= 1.0))
-      fail("parameter 'alpha' must be a number in (0, 1], got " + v->dump());
-    p.alpha = float(v->get<double>());
-  }
-  r.read("passes", p.passes, 1, 1000000);
-  r.read("photons_per_pass", p.photons_per_pass, 1, kMaxPhotons);
-  r.read("max_paths", p.max_paths, std::uint64_t(0), std::uint64_t(1) << 40);
-  r.read("max_photon_depth", p.max_photon_depth, 1, 1000);
-  r.read("initial_photons", p.initial_photons, 1, 1 << 20);
-  r.finish();
+const knobs::KnobTable<PpmParams>& PpmParams::knobs() {
+  using K = knobs::Knob<PpmParams>;
+  static const knobs::KnobTable<PpmParams> table(
+      "ppm",
+      {K::integer("passes", &PpmParams::passes, 1, 1000000, "passes",
+                  "Photon passes (each photons_per_pass per map): error falls as N^-1/3 in RMSE.")
+           // Its convergence front: the same recipe with 4x the passes of the longest value as
+           // the reference.
+           .front({"[1, 2, 4, 8, 16, 32, 64]", "", R"({"passes": 256})", "", true}),
+       K::integer("photons_per_pass", &PpmParams::photons_per_pass, 1, kMaxPhotons, "photons",
+                  "Photons stored per map (caustic and global) per pass."),
+       K::integer("max_paths", &PpmParams::max_paths, 0, 1ull << 40, "paths",
+                  "Photon paths one map may emit in a pass (0 = the tracer's own cap); a map cut "
+                  "short stays unbiased."),
+       K::number_or_auto("initial_radius", &PpmParams::initial_radius, 0.0, 3.0e38, "world units",
+                         "Radius every visible point starts with; auto = the distance to the "
+                         "initial_photons-th photon of a pilot pass.")
+           .open_below(),
+       K::integer("initial_photons", &PpmParams::initial_photons, 1, 1 << 20, "photons",
+                  "Photons of the pilot pass within an automatic initial radius."),
+       K::number("alpha", &PpmParams::alpha, 0.0, 1.0, "",
+                 "Share of new photons kept at each pass: 2/3 balances bias and variance.")
+           .open_below(),
+       K::integer("max_photon_depth", &PpmParams::max_photon_depth, 1, 1000, "bounces",
+                  "Surface interactions per photon path before it is dropped."),
+       K::integer(knobs::kSeedKnob, &PpmParams::seed, 0, ~0ull, "",
+                  "Seed of the photon paths; pass i draws from a seed of its own derived from it.")});
+  return table;
 }
 
 const tracer::Integrator& ppm_integrator() {
@@ -333,7 +342,10 @@ const tracer::Integrator& ppm_integrator() {
       "ppm",
       "progressive photon mapping (Hachisuka et al. 2008, alpha 2/3): the consistent reference for "
       "the photon integrator's knobs",
-      ppm_params_json, render_ppm, ppm_summary};
+      ppm_knobs, render_ppm, ppm_summary, nullptr,
+      // The reference of the photon integrator's fronts: 256 passes of 50,000 photons per map
+      // (12.8 million per map and half).
+      R"({"passes": 256, "photons_per_pass": 50000})", ppm_bias_check};
   return kPpm;
 }
 

@@ -49,14 +49,11 @@ struct PpmParams {
   int max_photon_depth = 64;
   /// Seed of the photon paths; pass i draws from a seed of its own derived from it.
   std::uint64_t seed = 1;
+
+  /// The table (initial_radius as "auto" or its number; one-line errors such as "ppm: parameter
+  /// 'passes' must be in [1, 1000000], got 0").
+  static const knobs::KnobTable<PpmParams>& knobs();
 };
-
-/// Every knob, initial_radius as "auto" or its number.
-void to_json(nlohmann::json& j, const PpmParams& p);
-
-/// Reads the knobs given (an object, possibly empty). Throws accel::ConfigError, one line naming
-/// the knob ("ppm: parameter 'passes' must be in [1, 1000000], got 0").
-void from_json(const nlohmann::json& j, PpmParams& p);
 
 /// The row of the integrator table.
 const tracer::Integrator& ppm_integrator();

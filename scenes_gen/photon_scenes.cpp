@@ -7,8 +7,13 @@
 #include "materials.h"
 #include "registry.h"
 
+#include "photon/photon_integrator.h"
+#include "photon/photon_params.h"
+
 #include <cmath>
 #include <numbers>
+#include <optional>
+#include <string>
 
 namespace scenes_gen {
 
@@ -22,9 +27,20 @@ void add_quad(tracer::Geometry& g, Vec3 a, Vec3 b, Vec3 c, Vec3 d, std::uint32_t
   g.triangles.push_back({a, c, d, material, -1});
 }
 
-void choose_photon(tracer::Scene& scene, nlohmann::json knobs) {
-  scene.integrator.name = "photon";
-  scene.integrator.knobs = std::move(knobs);
+/// Picks the photon integrator with the knobs of `p` that differ from the defaults.
+void choose_photon(tracer::Scene& scene, const photon::PhotonParams& p) {
+  scene.integrator.name = std::string(photon::photon_integrator().name);
+  scene.integrator.knobs = photon::PhotonParams::knobs().changed_json(p);
+}
+
+/// Photon knobs: the counts of the two maps and the gather.
+photon::PhotonParams photon_knobs(int caustic, int global, int k, std::optional<float> max_radius) {
+  photon::PhotonParams p;
+  p.caustic_photons = caustic;
+  p.global_photons = global;
+  p.k = k;
+  p.max_radius = max_radius;
+  return p;
 }
 
 }  // namespace
@@ -48,11 +64,7 @@ tracer::Scene make_ring(const GenOptions&) {
   scene.render.max_depth = 8;
   // The floor is unbounded and nothing stands over it but the ring: few photons bounce back
   // down after a diffuse bounce, so the global map is small (its pass stops at its cap).
-  choose_photon(scene, {{"caustic_photons", 200000},
-                        {"global_photons", 2000},
-                        {"k", 80},
-                        {"max_radius", 0.08},
-                        {"filter", "cone"}});
+  choose_photon(scene, photon_knobs(200000, 2000, 80, 0.08f));
   return scene;
 }
 
@@ -76,11 +88,7 @@ tracer::Scene make_glass_caustic(const GenOptions&) {
   scene.camera.width = 480;
   scene.camera.height = 360;
   scene.render.max_depth = 10;
-  choose_photon(scene, {{"caustic_photons", 200000},
-                        {"global_photons", 100000},
-                        {"k", 150},
-                        {"max_radius", 0.6},
-                        {"filter", "cone"}});
+  choose_photon(scene, photon_knobs(200000, 100000, 150, 0.6f));
   return scene;
 }
 
@@ -112,10 +120,7 @@ tracer::Scene make_cornell(const GenOptions&) {
   scene.render.max_depth = 10;
   // The global map is read directly (final gathering is a knob away, and slower: its rays that
   // meet the ceiling near the light bring back fireflies at few rays).
-  choose_photon(scene, {{"caustic_photons", 100000},
-                        {"global_photons", 200000},
-                        {"k", 200},
-                        {"max_radius", 0.3}});
+  choose_photon(scene, photon_knobs(100000, 200000, 200, 0.3f));
   return scene;
 }
 
@@ -132,7 +137,9 @@ tracer::Scene make_furnace_scene(float radius, float albedo, float power_w) {
   scene.camera.width = 64;
   scene.camera.height = 64;
   scene.render.max_depth = 4;
-  choose_photon(scene, {{"global_photons", 100000}, {"k", 100}, {"max_photon_depth", 1000}});
+  photon::PhotonParams knobs = photon_knobs(photon::PhotonParams{}.caustic_photons, 100000, 100, std::nullopt);
+  knobs.max_photon_depth = 1000;
+  choose_photon(scene, knobs);
   scene.geometry.finalize();
   return scene;
 }

@@ -24,7 +24,7 @@ std::string error_of(std::string_view name, const json& params, int prims = 10) 
   const auto boxes = row_of_boxes(prims);
   try {
     accel::make_accel(name, params, boxes);
-  } catch (const accel::ConfigError& e) {
+  } catch (const knobs::ConfigError& e) {
     return e.what();
   }
   return "(no error)";
@@ -45,24 +45,24 @@ TEST(AccelFactory, UnknownNameListsValidOnes) {
 }
 
 TEST(AccelFactory, NaiveRejectsAnyKnob) {
-  EXPECT_EQ(error_of("naive", {{"max_depth", 3}}), "naive: unknown parameter 'max_depth' (it has no knobs)");
+  EXPECT_EQ(error_of("naive", {{"max_depth", 3}}), "naive: unknown knob 'max_depth' (it has no knobs)");
 }
 
 TEST(AccelFactory, BadKnobsNameTheKey) {
   EXPECT_EQ(error_of("bvh", {{"max_dept", 3}}),
-            "bvh: unknown parameter 'max_dept' (its knobs: bins, max_leaf_size, max_depth, traversal_cost)");
-  EXPECT_EQ(error_of("bvh", {{"max_depth", "3"}}), "bvh: parameter 'max_depth' must be an integer, got \"3\"");
-  EXPECT_EQ(error_of("bvh", {{"max_depth", 65}}), "bvh: parameter 'max_depth' must be in [0, 64], got 65");
-  EXPECT_EQ(error_of("bvh", {{"max_depth", -1}}), "bvh: parameter 'max_depth' must be in [0, 64], got -1");
-  EXPECT_EQ(error_of("bvh", {{"max_leaf_size", 0}}), "bvh: parameter 'max_leaf_size' must be in [1, 255], got 0");
-  EXPECT_EQ(error_of("bvh", {{"bins", 4}}), "bvh: parameter 'bins' must be in [8, 256], got 4");
-  EXPECT_EQ(error_of("bvh", {{"max_leaf_size", 2.5}}), "bvh: parameter 'max_leaf_size' must be an integer, got 2.5");
-  EXPECT_EQ(error_of("bvh", json::array({1})), "bvh: parameters must be a JSON object, got [1]");
-  EXPECT_EQ(error_of("auto", {{"naive_max_prims", true}}), "auto: parameter 'naive_max_prims' must be an integer, got true");
+            "bvh: unknown knob 'max_dept' (its knobs: bins, max_leaf_size, max_depth, traversal_cost)");
+  EXPECT_EQ(error_of("bvh", {{"max_depth", "3"}}), "bvh: knob 'max_depth' must be an integer, got \"3\"");
+  EXPECT_EQ(error_of("bvh", {{"max_depth", 65}}), "bvh: knob 'max_depth' must be in [0, 64], got 65");
+  EXPECT_EQ(error_of("bvh", {{"max_depth", -1}}), "bvh: knob 'max_depth' must be in [0, 64], got -1");
+  EXPECT_EQ(error_of("bvh", {{"max_leaf_size", 0}}), "bvh: knob 'max_leaf_size' must be in [1, 255], got 0");
+  EXPECT_EQ(error_of("bvh", {{"bins", 4}}), "bvh: knob 'bins' must be in [8, 256], got 4");
+  EXPECT_EQ(error_of("bvh", {{"max_leaf_size", 2.5}}), "bvh: knob 'max_leaf_size' must be an integer, got 2.5");
+  EXPECT_EQ(error_of("bvh", json::array({1})), "bvh: knobs must be a JSON object, got [1]");
+  EXPECT_EQ(error_of("auto", {{"naive_max_prims", true}}), "auto: knob 'naive_max_prims' must be an integer, got true");
   // The knobs of embree are known (and checked) even in a build without Embree.
   EXPECT_EQ(error_of("embree", {{"build_quality", "low"}}),
-            "embree: parameter 'build_quality' must be one of medium|high, got \"low\"");
-  EXPECT_EQ(error_of("embree", {{"robust", 1}}), "embree: parameter 'robust' must be true or false, got 1");
+            "embree: knob 'build_quality' must be one of medium|high, got \"low\"");
+  EXPECT_EQ(error_of("embree", {{"robust", 1}}), "embree: knob 'robust' must be true or false, got 1");
   if (!accel::accel_built("embree")) {
     EXPECT_EQ(error_of("embree", nullptr), "embree: not built (Embree 3 was not found; run scripts/setup)");
   }
@@ -133,7 +133,7 @@ TEST(AccelFactory, MemoryBudgetErrorNamesTheKnob) {
   try {
     accel::make_accel("bvh", nullptr, boxes, accel::BuildLimits{1024});
     FAIL() << "expected ConfigError";
-  } catch (const accel::ConfigError& e) {
+  } catch (const knobs::ConfigError& e) {
     EXPECT_NE(std::string(e.what()).find("--max-memory"), std::string::npos) << e.what();
   }
 }

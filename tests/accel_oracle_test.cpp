@@ -425,7 +425,7 @@ TEST_P(Oracle, EveryStructureAndKnobMatchesNaive) {
       accel::AnyAccel a;
       try {
         a = accel::make_accel(name, knobs, boxes, limits);
-      } catch (const accel::ConfigError& e) {
+      } catch (const knobs::ConfigError& e) {
         if (knobs.contains("isa") && !cpu_has_isa(knobs["isa"].get<std::string>())) {
           ++cpu_lacks;  // a level this CPU lacks: refused, and tested on the machines that have it
           continue;

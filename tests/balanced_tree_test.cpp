@@ -125,18 +125,19 @@ TEST(BalancedTree, ParamsJsonNamesTheKnob) {
   const auto error = [](const char* text) -> std::string {
     try {
       nlohmann::json::parse(text).get<photon::PhotonTreeParams>();
-    } catch (const accel::ConfigError& e) {
+    } catch (const knobs::ConfigError& e) {
       return e.what();
     }
     return "no error";
   };
   EXPECT_EQ(error(R"({"photon_tree": "kd"})"),
-            "photon map: parameter 'photon_tree' must be one of "
-            "balanced|sliding_midpoint|median_buckets|brute_force, got 'kd'");
-  EXPECT_EQ(error(R"({"leaf_size": 0})"), "photon map: parameter 'leaf_size' must be in [1, 256], got 0");
+            "photon map: knob 'photon_tree' must be one of "
+            "balanced|sliding_midpoint|median_buckets|brute_force, got \"kd\"");
+  EXPECT_EQ(error(R"({"leaf_size": 0})"), "photon map: knob 'leaf_size' must be in [1, 256], got 0");
   EXPECT_EQ(error(R"({"build_threads": -1})"),
-            "photon map: parameter 'build_threads' must be in [0, 256], got -1");
-  EXPECT_EQ(error(R"({"leafsize": 4})"), "photon map: unknown parameter 'leafsize'");
+            "photon map: knob 'build_threads' must be in [0, 256], got -1");
+  EXPECT_EQ(error(R"({"leafsize": 4})"),
+            "photon map: unknown knob 'leafsize' (its knobs: photon_tree, leaf_size, build_threads)");
   const photon::PhotonTreeParams p =
       nlohmann::json(photon::PhotonTreeParams{photon::PhotonTreeKind::MedianBuckets, 24, 3})
           .get<photon::PhotonTreeParams>();

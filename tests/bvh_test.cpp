@@ -184,7 +184,7 @@ TEST(Bvh, MemoryBudgetIsHonoured) {
   try {
     Bvh(boxes, BvhParams{}, accel::BuildLimits{1000});
     FAIL() << "expected ConfigError";
-  } catch (const accel::ConfigError& e) {
+  } catch (const knobs::ConfigError& e) {
     EXPECT_NE(std::string(e.what()).find("--max-memory"), std::string::npos) << e.what();
   }
 }
@@ -193,13 +193,13 @@ TEST(Bvh, InvalidParamsInCodeAreRejected) {
   const auto boxes = random_boxes(10, 5);
   BvhParams p;
   p.bins = 2;
-  EXPECT_THROW(Bvh(boxes, p), accel::ConfigError);
+  EXPECT_THROW(Bvh(boxes, p), knobs::ConfigError);
   p = {};
   p.max_depth = 65;
-  EXPECT_THROW(Bvh(boxes, p), accel::ConfigError);
+  EXPECT_THROW(Bvh(boxes, p), knobs::ConfigError);
   p = {};
   p.max_leaf_size = 0;
-  EXPECT_THROW(Bvh(boxes, p), accel::ConfigError);
+  EXPECT_THROW(Bvh(boxes, p), knobs::ConfigError);
 }
 
 TEST(Bvh, BuildsEightThousandSpheresQuickly) {

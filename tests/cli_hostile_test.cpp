@@ -199,7 +199,7 @@ TEST_F(Hostile, ScenesAndSceneFiles) {
 TEST_F(Hostile, EmbreeInstructionSets) {
   five();
   expect_case(dir_, {"an unknown instruction set", "render five.json --accel embree --knob isa=avx9 --resolution 8x8",
-                     "accelbench: embree: parameter 'isa' must be one of build|cpu|sse2|sse4.2|avx|avx2|avx512, "
+                     "accelbench: embree: knob 'isa' must be one of build|cpu|sse2|sse4.2|avx|avx2|avx512, "
                      "got \"avx9\""});
   const accel::IsaSet cpu = accel::cpu_isas();
   for (accel::Isa isa : accel::kIsas) {
@@ -210,7 +210,7 @@ TEST_F(Hostile, EmbreeInstructionSets) {
       EXPECT_EQ(r.status, 0) << name << ": " << r.output;
     } else {
       expect_case(dir_, {"a level this CPU lacks", args,
-                         "accelbench: embree: parameter 'isa' = " + name + " needs " + accel::isa_features(isa) +
+                         "accelbench: embree: knob 'isa' = " + name + " needs " + accel::isa_features(isa) +
                              ", which this CPU lacks (it has " + accel::isa_list(cpu) + ")"});
     }
   }

@@ -14,10 +14,11 @@ struct CliRun {
   std::string output;  ///< stdout and stderr together.
 };
 
-/// Runs `shell_command` (a command line for /bin/sh) with stderr joined to stdout.
-inline CliRun run(const std::string& shell_command) {
+/// Runs `shell_command` (a command line for /bin/sh), its stderr joined to stdout unless
+/// `join_stderr` is false (then stderr goes to the test's own).
+inline CliRun run(const std::string& shell_command, bool join_stderr = true) {
   CliRun result;
-  FILE* pipe = popen((shell_command + " 2>&1").c_str(), "r");
+  FILE* pipe = popen((shell_command + (join_stderr ? " 2>&1" : "")).c_str(), "r");
   if (!pipe) return result;
   std::array<char, 4096> buf;
   while (std::fgets(buf.data(), int(buf.size()), pipe)) result.output += buf.data();

@@ -155,15 +155,15 @@ TEST_F(Cli, PhotonKnobsFromSceneAndFlagsAndBadOnesNameTheKnob) {
     std::string args;
     std::string message;
   } cases[] = {
-      {"--param global_photons=0", "accelbench: --param: photon: parameter 'global_photons' must be in [1, "},
-      {"--param caustic_photons=-3", "accelbench: --param: photon: parameter 'caustic_photons' must be in [1, "},
-      {"--param k=0", "accelbench: --param: photon: parameter 'k' must be in [1, "},
-      {"--param cone_k=0.5", "accelbench: --param: photon: parameter 'cone_k' must be in [1.0, "},
-      {"--param max_radius=0", "accelbench: --param: photon: parameter 'max_radius' must be a number > 0"},
-      {"--param max_radius=-2", "accelbench: --param: photon: parameter 'max_radius' must be a number > 0"},
+      {"--param global_photons=0", "accelbench: --param: photon: knob 'global_photons' must be in [1, "},
+      {"--param caustic_photons=-3", "accelbench: --param: photon: knob 'caustic_photons' must be in [1, "},
+      {"--param k=0", "accelbench: --param: photon: knob 'k' must be in [1, "},
+      {"--param cone_k=0.5", "accelbench: --param: photon: knob 'cone_k' must be in [1.0, "},
+      {"--param max_radius=0", "accelbench: --param: photon: knob 'max_radius' must be in (0.0, 3e+38] or \"auto\", got 0"},
+      {"--param max_radius=-2", "accelbench: --param: photon: knob 'max_radius' must be in (0.0, 3e+38] or \"auto\", got -2"},
       {"--param global_photons=100000000 --max-memory 1M",
-       "accelbench: photon: parameter 'global_photons' = 100000000 needs "},
-      {"--param kk=1", "accelbench: --param: photon: unknown parameter 'kk'"},
+       "accelbench: photon: knob 'global_photons' = 100000000 needs "},
+      {"--param kk=1", "accelbench: --param: photon: unknown knob 'kk'"},
       {"--param k", "accelbench: --param: expected NAME=VALUE, got 'k'"},
       {"--integrator whitted --param k=3", "accelbench: --param: whitted: unknown knob 'k'"},
   };
@@ -178,7 +178,7 @@ TEST_F(Cli, PhotonKnobsFromSceneAndFlagsAndBadOnesNameTheKnob) {
       "materials": [{"name": "m", "type": "diffuse"}], "spheres": [{"center": [0, 0, -3], "radius": 1, "material": "m"}]})";
   const CliRun bad = accelbench("render " + path("bad.json") + " --resolution 8x8");
   EXPECT_NE(bad.status, 0);
-  EXPECT_EQ(bad.output.rfind("accelbench: " + path("bad.json") + ": /integrator: photon: parameter 'k'", 0), 0u)
+  EXPECT_EQ(bad.output.rfind("accelbench: " + path("bad.json") + ": /integrator: photon: knob 'k'", 0), 0u)
       << bad.output;
 }
 

@@ -181,20 +181,20 @@ TEST(Density, BadConeKNamesTheKnob) {
   try {
     photon::flux_density(map, nb, {DensityFilter::Cone, 0.5f}, kUp);
     FAIL() << "no error";
-  } catch (const accel::ConfigError& e) {
-    EXPECT_STREQ(e.what(), "density: cone_k must be a finite number >= 1, got 0.5");
+  } catch (const knobs::ConfigError& e) {
+    EXPECT_STREQ(e.what(), "density: knob 'cone_k' must be in [1.0, 1000000.0], got 0.5");
   }
   try {
     nlohmann::json::parse(R"({"filter": "cone", "cone_k": 0.9})").get<DensityParams>();
     FAIL() << "no error";
-  } catch (const accel::ConfigError& e) {
-    EXPECT_STREQ(e.what(), "density: parameter 'cone_k' must be in [1.0, 1000000.0], got 0.9");
+  } catch (const knobs::ConfigError& e) {
+    EXPECT_STREQ(e.what(), "density: knob 'cone_k' must be in [1.0, 1000000.0], got 0.9");
   }
   try {
     nlohmann::json::parse(R"({"filter": "gauss"})").get<DensityParams>();
     FAIL() << "no error";
-  } catch (const accel::ConfigError& e) {
-    EXPECT_STREQ(e.what(), "density: parameter 'filter' must be one of box|cone|biweight, got 'gauss'");
+  } catch (const knobs::ConfigError& e) {
+    EXPECT_STREQ(e.what(), "density: knob 'filter' must be one of box|cone|biweight, got \"gauss\"");
   }
   const DensityParams p = nlohmann::json(DensityParams{DensityFilter::Biweight, 2.5f}).get<DensityParams>();
   EXPECT_EQ(p.filter, DensityFilter::Biweight);

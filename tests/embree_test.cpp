@@ -161,9 +161,9 @@ TEST(Embree, RunsAtEveryIsaTheCpuHasAndRefusesTheOthers) {
       try {
         accel::make_accel("embree", {{"isa", name}}, sp.boxes);
         ADD_FAILURE() << name << ": expected a refusal";
-      } catch (const accel::ConfigError& e) {
+      } catch (const knobs::ConfigError& e) {
         const std::string what = e.what();
-        EXPECT_NE(what.find("parameter 'isa' = " + name), std::string::npos) << what;
+        EXPECT_NE(what.find("knob 'isa' = " + name), std::string::npos) << what;
         EXPECT_EQ(what.find('\n'), std::string::npos) << what;
       }
     }
@@ -186,9 +186,9 @@ TEST(Embree, IsaRefusalNamesTheLevelAndTheKnob) {
   try {
     accel::check_embree_isa(accel::EmbreeIsa::Avx512, avx2_cpu);
     FAIL() << "expected ConfigError";
-  } catch (const accel::ConfigError& e) {
+  } catch (const knobs::ConfigError& e) {
     EXPECT_STREQ(e.what(),
-                 "embree: parameter 'isa' = avx512 needs AVX-512 F, CD, DQ, BW and VL, which this CPU lacks "
+                 "embree: knob 'isa' = avx512 needs AVX-512 F, CD, DQ, BW and VL, which this CPU lacks "
                  "(it has sse2, sse4.2, avx, avx2)");
   }
   EXPECT_NO_THROW(accel::check_embree_isa(accel::EmbreeIsa::Avx2, avx2_cpu));
@@ -211,7 +211,7 @@ TEST(Embree, MemoryBudgetIsHonoured) {
   try {
     accel::make_accel("embree", nullptr, sp.boxes, accel::BuildLimits{4096});
     FAIL() << "expected ConfigError";
-  } catch (const accel::ConfigError& e) {
+  } catch (const knobs::ConfigError& e) {
     EXPECT_NE(std::string(e.what()).find("--max-memory"), std::string::npos) << e.what();
   }
 }
@@ -336,7 +336,7 @@ TEST(EmbreePoints, WithoutItsSpheresItIsTheUserGeometryAdapter) {
   try {
     accel::make_accel("embree_points", nullptr, random_spheres(5000, 23).boxes, accel::BuildLimits{4096});
     FAIL() << "expected ConfigError";
-  } catch (const accel::ConfigError& e) {
+  } catch (const knobs::ConfigError& e) {
     EXPECT_EQ(std::string(e.what()).rfind("embree_points: ", 0), 0u) << e.what();
   }
   EXPECT_FALSE(accel::find_structure("embree_points")->exact);
@@ -349,7 +349,7 @@ TEST(Embree, NotBuiltSaysHowToGetIt) {
   try {
     accel::make_accel("embree", nullptr, std::span<const Aabb>{});
     FAIL() << "expected ConfigError";
-  } catch (const accel::ConfigError& e) {
+  } catch (const knobs::ConfigError& e) {
     EXPECT_STREQ(e.what(), "embree: not built (Embree 3 was not found; run scripts/setup)");
   }
   EXPECT_FALSE(accel::accel_built("embree"));

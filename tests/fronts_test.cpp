@@ -12,6 +12,8 @@
 #include "scenes_gen/generators.h"
 #include "tracer/render.h"
 
+#include "cli_run.h"
+
 #include <gtest/gtest.h>
 
 #include <sys/wait.h>
@@ -38,22 +40,9 @@ fs::path temp_dir(const std::string& name) {
   return dir;
 }
 
-struct CliRun {
-  int status = -1;
-  std::string output;  // stdout and stderr together
-};
+using cli_run::CliRun;
 
-CliRun accelbench(const std::string& args) {
-  const std::string cmd = std::string(ACCELBENCH_CLI) + " " + args + " 2>&1";
-  CliRun run;
-  FILE* pipe = popen(cmd.c_str(), "r");
-  if (!pipe) return run;
-  std::array<char, 4096> buf;
-  while (std::fgets(buf.data(), int(buf.size()), pipe)) run.output += buf.data();
-  const int raw = pclose(pipe);
-  run.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  return run;
-}
+CliRun accelbench(const std::string& args) { return cli_run::run(std::string(ACCELBENCH_CLI) + " " + args); }
 
 bench::FrontsRequest small_request() {
   bench::FrontsRequest r;

@@ -6,7 +6,6 @@
 
 #include <gtest/gtest.h>
 
-#include <chrono>
 #include <string>
 #include <vector>
 
@@ -149,26 +148,26 @@ TEST(KdTree, RejectsBadKnobsWithOneLineNamingTheKey) {
   auto error_of = [&](const nlohmann::json& j) -> std::string {
     try {
       accel::make_accel("kdtree", j, one);
-    } catch (const accel::ConfigError& e) {
+    } catch (const knobs::ConfigError& e) {
       return e.what();
     }
     return "no error";
   };
   EXPECT_EQ(error_of({{"max_leaf_size", 0}}),
-            "kdtree: parameter 'max_leaf_size' must be in [1, 2147483647], got 0");
-  EXPECT_EQ(error_of({{"max_depth", 65}}), "kdtree: parameter 'max_depth' must be in [0, 64], got 65");
-  EXPECT_EQ(error_of({{"max_depth", -1}}), "kdtree: parameter 'max_depth' must be in [0, 64], got -1");
-  EXPECT_EQ(error_of({{"leafsize", 4}}), "kdtree: unknown parameter 'leafsize' (its knobs: max_depth, max_leaf_size, placement, split, "
+            "kdtree: knob 'max_leaf_size' must be in [1, 2147483647], got 0");
+  EXPECT_EQ(error_of({{"max_depth", 65}}), "kdtree: knob 'max_depth' must be in [0, 64], got 65");
+  EXPECT_EQ(error_of({{"max_depth", -1}}), "kdtree: knob 'max_depth' must be in [0, 64], got -1");
+  EXPECT_EQ(error_of({{"leafsize", 4}}), "kdtree: unknown knob 'leafsize' (its knobs: max_depth, max_leaf_size, placement, split, "
             "traversal_cost, intersection_cost, empty_bonus)");
-  EXPECT_EQ(error_of({{"max_depth", "8"}}), "kdtree: parameter 'max_depth' must be an integer, got \"8\"");
+  EXPECT_EQ(error_of({{"max_depth", "8"}}), "kdtree: knob 'max_depth' must be an integer, got \"8\"");
   EXPECT_EQ(error_of({{"split", "median"}}),
-            "kdtree: parameter 'split' must be one of midpoint|sah, got \"median\"");
+            "kdtree: knob 'split' must be one of midpoint|sah, got \"median\"");
   EXPECT_EQ(error_of({{"placement", "root"}}),
-            "kdtree: parameter 'placement' must be one of leaves|every_level, got \"root\"");
-  EXPECT_EQ(error_of({{"empty_bonus", 1.5}}), "kdtree: parameter 'empty_bonus' must be in [0.0, 1.0], got 1.5");
+            "kdtree: knob 'placement' must be one of leaves|every_level, got \"root\"");
+  EXPECT_EQ(error_of({{"empty_bonus", 1.5}}), "kdtree: knob 'empty_bonus' must be in [0.0, 1.0], got 1.5");
   KdTreeParams direct;
   direct.max_leaf_size = 0;
-  EXPECT_THROW(KdTree(one, direct), accel::ConfigError);
+  EXPECT_THROW(KdTree(one, direct), knobs::ConfigError);
 }
 
 TEST(KdTree, KnobsRoundTripThroughJson) {
@@ -184,21 +183,22 @@ TEST(KdTree, KnobsRoundTripThroughJson) {
   EXPECT_EQ(accel::name_of(a), "kdtree");
 }
 
-TEST(KdTree, MemoryBudgetStopsARunawayBuildQuickly) {
+TEST(KdTree, MemoryBudgetStopsARunawayBuild) {
   // Large overlapping spheres straddle nearly every midpoint plane: at depth 64 with one
   // primitive per leaf the tree would grow without end.
   std::vector<Aabb> boxes;
   for (int i = 0; i < 64; ++i) boxes.push_back({Vec3(float(i) * 0.01f), Vec3(10.0f + float(i) * 0.01f)});
-  const auto start = std::chrono::steady_clock::now();
   try {
     KdTree(boxes, knobs(64, 1, Placement::Leaves, SplitRule::Midpoint), accel::BuildLimits{32ull << 20});
     FAIL() << "no error";
-  } catch (const accel::ConfigError& e) {
+  } catch (const knobs::ConfigError& e) {
     EXPECT_EQ(std::string(e.what()),
               "kdtree: build needs more than 32.0 MiB (--max-memory); lower max_depth or raise "
               "max_leaf_size, or use placement every_level");
   }
-  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 2.0);
+  // The error is the whole guarantee: the builder refuses once its nodes would pass the budget,
+  // so it never holds more than the budget, however deep the tree could grow. (No wall-time
+  // bound: speed belongs in benchmarks.)
   // The same scene with every_level stores each primitive once and fits easily.
   const KdTree fits(boxes, knobs(64, 1, Placement::EveryLevel, SplitRule::Midpoint),
                     accel::BuildLimits{32ull << 20});

@@ -260,16 +260,16 @@ TEST(Knn, BadKnobsNameTheKnob) {
   const auto message = [&](GatherParams p) -> std::string {
     try {
       map.gather(Vec3(0.0f), Vec3(0.0f), p, nb);
-    } catch (const accel::ConfigError& e) {
+    } catch (const knobs::ConfigError& e) {
       return e.what();
     }
     return "no error";
   };
-  EXPECT_EQ(message({0, 1.0f, true, true}), "gather: k must be in [1, 1048576], got 0");
-  EXPECT_EQ(message({-3, 1.0f, true, true}), "gather: k must be in [1, 1048576], got -3");
-  EXPECT_EQ(message({5, 0.0f, true, true}), "gather: max_radius must be > 0, got 0");
-  EXPECT_EQ(message({5, -1.0f, true, true}), "gather: max_radius must be > 0, got -1");
-  EXPECT_EQ(message({5, std::nanf(""), true, true}), "gather: max_radius must be > 0, got nan");
+  EXPECT_EQ(message({0, 1.0f, true, true}), "gather: knob 'k' must be in [1, 1048576], got 0");
+  EXPECT_EQ(message({-3, 1.0f, true, true}), "gather: knob 'k' must be in [1, 1048576], got -3");
+  EXPECT_EQ(message({5, 0.0f, true, true}), "gather: knob 'max_radius' must be > 0.0 or \"inf\", got 0.0");
+  EXPECT_EQ(message({5, -1.0f, true, true}), "gather: knob 'max_radius' must be > 0.0 or \"inf\", got -1.0");
+  EXPECT_EQ(message({5, std::nanf(""), true, true}), "gather: knob 'max_radius' must be > 0.0 or \"inf\", got nan");
   EXPECT_EQ(message({5, kInf, true, true}), "no error");
 }
 
@@ -286,17 +286,17 @@ TEST(Knn, ParamsJsonRoundTripAndRejects) {
   const auto error = [](const char* text) -> std::string {
     try {
       nlohmann::json::parse(text).get<GatherParams>();
-    } catch (const accel::ConfigError& e) {
+    } catch (const knobs::ConfigError& e) {
       return e.what();
     }
     return "no error";
   };
-  EXPECT_EQ(error(R"({"k": 0})"), "gather: parameter 'k' must be in [1, 1048576], got 0");
+  EXPECT_EQ(error(R"({"k": 0})"), "gather: knob 'k' must be in [1, 1048576], got 0");
   EXPECT_EQ(error(R"({"max_radius": -2})"),
-            "gather: parameter 'max_radius' must be a number > 0 or \"inf\", got -2");
+            "gather: knob 'max_radius' must be > 0.0 or \"inf\", got -2");
   EXPECT_EQ(error(R"({"max_radius": "big"})"),
-            "gather: parameter 'max_radius' must be a number > 0 or \"inf\", got \"big\"");
-  EXPECT_EQ(error(R"({"kk": 3})"), "gather: unknown parameter 'kk'");
+            "gather: knob 'max_radius' must be a number or \"inf\", got \"big\"");
+  EXPECT_EQ(error(R"({"kk": 3})"), "gather: unknown knob 'kk' (its knobs: k, max_radius, cull, cache_distances)");
 }
 
 // nanoflann 1.4.3 as a second opinion: the same squared distances (bit for bit: both compute

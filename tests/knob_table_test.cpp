@@ -3,10 +3,12 @@
 // same error text wherever a knob is given: JSON to the factory, a sweep file, `--knob`.
 
 #include "accel/accel.h"
-#include "accel/knob_table.h"
+#include "knobs/knob_table.h"
 #include "bench/sweep_definition.h"
 #include "bench/sweep_measure.h"
 #include "scenes_gen/generators.h"
+
+#include "cli_run.h"
 
 #include <gtest/gtest.h>
 
@@ -20,9 +22,9 @@
 
 namespace {
 
-using accel::ConfigError;
-using accel::Knob;
-using accel::KnobTable;
+using knobs::ConfigError;
+using knobs::Knob;
+using knobs::KnobTable;
 using nlohmann::json;
 
 enum class Flavour : std::uint8_t { Plain, Fancy };
@@ -78,20 +80,20 @@ TEST(KnobTable, DefaultsComeFromTheStructAndRoundTrip) {
 }
 
 TEST(KnobTable, ErrorsAreOneLineNamingOwnerAndKnob) {
-  EXPECT_EQ(error_of({{"dept", 1}}), "demo: unknown parameter 'dept' (its knobs: depth, radius, fast, flavour, photons)");
-  EXPECT_EQ(error_of({{"depth", "3"}}), "demo: parameter 'depth' must be an integer, got \"3\"");
-  EXPECT_EQ(error_of({{"depth", 2.5}}), "demo: parameter 'depth' must be an integer, got 2.5");
-  EXPECT_EQ(error_of({{"depth", 11}}), "demo: parameter 'depth' must be in [0, 10], got 11");
-  EXPECT_EQ(error_of({{"depth", -1}}), "demo: parameter 'depth' must be in [0, 10], got -1");
+  EXPECT_EQ(error_of({{"dept", 1}}), "demo: unknown knob 'dept' (its knobs: depth, radius, fast, flavour, photons)");
+  EXPECT_EQ(error_of({{"depth", "3"}}), "demo: knob 'depth' must be an integer, got \"3\"");
+  EXPECT_EQ(error_of({{"depth", 2.5}}), "demo: knob 'depth' must be an integer, got 2.5");
+  EXPECT_EQ(error_of({{"depth", 11}}), "demo: knob 'depth' must be in [0, 10], got 11");
+  EXPECT_EQ(error_of({{"depth", -1}}), "demo: knob 'depth' must be in [0, 10], got -1");
   EXPECT_EQ(error_of({{"depth", 18446744073709551615ull}}),
-            "demo: parameter 'depth' must be in [0, 10], got 18446744073709551615");
-  EXPECT_EQ(error_of({{"radius", 3}}), "demo: parameter 'radius' must be in [0.0, 2.0], got 3");
-  EXPECT_EQ(error_of({{"radius", "wide"}}), "demo: parameter 'radius' must be a number, got \"wide\"");
-  EXPECT_EQ(error_of({{"fast", 1}}), "demo: parameter 'fast' must be true or false, got 1");
-  EXPECT_EQ(error_of({{"flavour", "sour"}}), "demo: parameter 'flavour' must be one of plain|fancy, got \"sour\"");
-  EXPECT_EQ(error_of({{"flavour", 0}}), "demo: parameter 'flavour' must be one of plain|fancy, got 0");
-  EXPECT_EQ(error_of(json::array({1})), "demo: parameters must be a JSON object, got [1]");
-  EXPECT_EQ(error_of({{"photons", 0}}), "demo: parameter 'photons' must be in [1, 1000000000000], got 0");
+            "demo: knob 'depth' must be in [0, 10], got 18446744073709551615");
+  EXPECT_EQ(error_of({{"radius", 3}}), "demo: knob 'radius' must be in [0.0, 2.0], got 3");
+  EXPECT_EQ(error_of({{"radius", "wide"}}), "demo: knob 'radius' must be a number, got \"wide\"");
+  EXPECT_EQ(error_of({{"fast", 1}}), "demo: knob 'fast' must be true or false, got 1");
+  EXPECT_EQ(error_of({{"flavour", "sour"}}), "demo: knob 'flavour' must be one of plain|fancy, got \"sour\"");
+  EXPECT_EQ(error_of({{"flavour", 0}}), "demo: knob 'flavour' must be one of plain|fancy, got 0");
+  EXPECT_EQ(error_of(json::array({1})), "demo: knobs must be a JSON object, got [1]");
+  EXPECT_EQ(error_of({{"photons", 0}}), "demo: knob 'photons' must be in [1, 1000000000000], got 0");
   // A struct filled in code gets the same checks.
   Demo bad;
   bad.depth = 99;
@@ -99,21 +101,21 @@ TEST(KnobTable, ErrorsAreOneLineNamingOwnerAndKnob) {
 }
 
 TEST(KnobTable, CommandLineValuesAreReadAsJsonScalarsElseStrings) {
-  EXPECT_EQ(accel::knob_value_from_text("8"), json(8));
-  EXPECT_EQ(accel::knob_value_from_text("-2.5"), json(-2.5));
-  EXPECT_EQ(accel::knob_value_from_text("true"), json(true));
-  EXPECT_EQ(accel::knob_value_from_text("sah"), json("sah"));
-  EXPECT_EQ(accel::knob_value_from_text("8x"), json("8x"));
-  EXPECT_EQ(accel::knob_value_from_text(""), json(""));
-  EXPECT_EQ(accel::parse_knob_assignment("max_depth=8"), std::make_pair(std::string("max_depth"), json(8)));
-  EXPECT_EQ(accel::parse_knob_assignment("split=sah").second, json("sah"));
+  EXPECT_EQ(knobs::knob_value_from_text("8"), json(8));
+  EXPECT_EQ(knobs::knob_value_from_text("-2.5"), json(-2.5));
+  EXPECT_EQ(knobs::knob_value_from_text("true"), json(true));
+  EXPECT_EQ(knobs::knob_value_from_text("sah"), json("sah"));
+  EXPECT_EQ(knobs::knob_value_from_text("8x"), json("8x"));
+  EXPECT_EQ(knobs::knob_value_from_text(""), json(""));
+  EXPECT_EQ(knobs::parse_knob_assignment("max_depth=8"), std::make_pair(std::string("max_depth"), json(8)));
+  EXPECT_EQ(knobs::parse_knob_assignment("split=sah").second, json("sah"));
   try {
-    accel::parse_knob_assignment("max_depth");
+    knobs::parse_knob_assignment("max_depth");
     FAIL();
   } catch (const ConfigError& e) {
     EXPECT_STREQ(e.what(), "--knob: expected NAME=VALUE, got 'max_depth'");
   }
-  EXPECT_THROW(accel::parse_knob_assignment("=3"), ConfigError);
+  EXPECT_THROW(knobs::parse_knob_assignment("=3"), ConfigError);
 }
 
 TEST(KnobTable, MarkdownAndDescriptionListEveryKnob) {
@@ -130,22 +132,9 @@ TEST(KnobTable, MarkdownAndDescriptionListEveryKnob) {
 // ---------------------------------------------------------------------------------------------
 // The same errors everywhere: the factory's JSON, a sweep file, and --knob on the command line.
 
-struct CliRun {
-  int status = -1;
-  std::string output;
-};
+using cli_run::CliRun;
 
-CliRun accelbench(const std::string& args) {
-  const std::string cmd = std::string(ACCELBENCH_CLI) + " " + args + " 2>&1";
-  CliRun run;
-  FILE* pipe = popen(cmd.c_str(), "r");
-  if (!pipe) return run;
-  std::array<char, 4096> buf;
-  while (std::fgets(buf.data(), int(buf.size()), pipe)) run.output += buf.data();
-  const int raw = pclose(pipe);
-  run.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  return run;
-}
+CliRun accelbench(const std::string& args) { return cli_run::run(std::string(ACCELBENCH_CLI) + " " + args); }
 
 std::string factory_error(const std::string& structure, const json& knobs) {
   try {
@@ -183,12 +172,12 @@ TEST(KnobTable, SameErrorFromJsonSweepFileAndKnobFlag) {
                                    {"bvh", "max_depth", "deep"},  {"kdtree", "split", "median"},
                                    {"kdtree", "empty_bonus", "2"}, {"octree", "max_leaf_size", "0"}};
   for (const Case& c : cases) {
-    const json knobs = {{c.knob, accel::knob_value_from_text(c.text)}};
+    const json knobs = {{c.knob, knobs::knob_value_from_text(c.text)}};
     const std::string from_json = factory_error(c.structure, knobs);
     ASSERT_EQ(from_json.rfind(c.structure + ": ", 0), 0u) << from_json;
     // A sweep file: an unknown knob is named before anything runs, after its JSON pointer; a bad
     // value fails its row with the same message.
-    const bool unknown = from_json.find("unknown parameter") != std::string::npos;
+    const bool unknown = from_json.find("unknown knob") != std::string::npos;
     EXPECT_EQ(sweep_error(c.structure, knobs),
               unknown ? "/structures/0/" + c.knob + ": " + from_json : "row failed: " + from_json);
     const CliRun run = accelbench("render " + scene.string() + " --resolution 8x8 --accel " + c.structure +

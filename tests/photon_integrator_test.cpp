@@ -43,8 +43,7 @@ photon::PhotonMaps maps_of(const tracer::Scene& scene, const test_support::Struc
   const accel::AnyAccel a = structure.build(scene.geometry.primitive_bounds());
   tracer::RenderOptions o;
   o.threads = threads;
-  photon::PhotonParams p;
-  from_json(knobs, p);
+  const photon::PhotonParams p = knobs.get<photon::PhotonParams>();
   return photon::make_photon_maps(scene, a, p, o, /*keep_photons=*/true);
 }
 
@@ -318,7 +317,7 @@ TEST(PhotonKnobs, BadValuesNameTheKnob) {
     tracer::render(scene, accel::make_accel("naive", json::object(), boxes), o,
                    photon::photon_integrator(), {{"global_photons", 1000000}});
     ADD_FAILURE() << "1e6 photons fit in 1 MiB";
-  } catch (const accel::ConfigError& e) {
+  } catch (const knobs::ConfigError& e) {
     EXPECT_NE(std::string(e.what()).find("'global_photons'"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("memory budget"), std::string::npos) << e.what();
   }
@@ -326,8 +325,7 @@ TEST(PhotonKnobs, BadValuesNameTheKnob) {
 
 TEST(PhotonKnobs, EveryKnobRoundTripsWithItsDefault) {
   const json all = photon::photon_integrator().params(json::object());
-  photon::PhotonParams p;
-  from_json(all, p);
+  const photon::PhotonParams p = all.get<photon::PhotonParams>();
   EXPECT_EQ(json(p), all);
   for (const char* knob : {"global_photons", "caustic_photons", "k", "max_radius", "filter", "cone_k",
                            "max_photon_depth", "final_gather_rays", "photon_tree", "leaf_size",

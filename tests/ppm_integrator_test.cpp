@@ -129,9 +129,8 @@ TEST(PpmDeterminism, BitIdenticalAtAnyThreadCount) {
 TEST(PpmKnobs, BadKnobsAreOneLineNamingTheKnob) {
   const auto message = [](const json& j) -> std::string {
     try {
-      photon::PpmParams p;
-      from_json(j, p);
-    } catch (const accel::ConfigError& e) {
+      (void)photon::PpmParams::knobs().from_json(j);
+    } catch (const knobs::ConfigError& e) {
       return e.what();
     }
     return "";
@@ -147,8 +146,7 @@ TEST(PpmKnobs, BadKnobsAreOneLineNamingTheKnob) {
   for (const json& bad : {json{{"passes", 0}}, json{{"alpha", "x"}}})
     EXPECT_EQ(message(bad).find('\n'), std::string::npos);
   // Defaults round-trip through JSON.
-  photon::PpmParams p;
-  from_json(json(photon::PpmParams{}), p);
+  const photon::PpmParams p = json(photon::PpmParams{}).get<photon::PpmParams>();
   EXPECT_EQ(json(p), json(photon::PpmParams{}));
 }
 

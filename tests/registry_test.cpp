@@ -3,7 +3,11 @@
 // the plot script's registry file and the knob reference in the docs) holds every entry.
 
 #include "accel/accel.h"
+#include "bench/integrators.h"
 #include "bench/sweep_definition.h"
+#include "scenes_gen/generators.h"
+
+#include "cli_run.h"
 
 #include <gtest/gtest.h>
 
@@ -12,27 +16,15 @@
 #include <array>
 #include <cstdio>
 #include <fstream>
+#include <set>
 #include <string>
 
 namespace {
 
 using nlohmann::json;
 
-struct ProcessRun {
-  int status = -1;
-  std::string output;
-};
-
-ProcessRun run(const std::string& cmd) {
-  ProcessRun r;
-  FILE* pipe = popen((cmd + " 2>&1").c_str(), "r");
-  if (!pipe) return r;
-  std::array<char, 4096> buf;
-  while (std::fgets(buf.data(), int(buf.size()), pipe)) r.output += buf.data();
-  const int raw = pclose(pipe);
-  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  return r;
-}
+using ProcessRun = cli_run::CliRun;
+using cli_run::run;
 
 std::string read(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -66,6 +58,51 @@ TEST(Registry, FactoryNamesAreTheRegistry) {
       EXPECT_EQ(accel::params_of(a).size(), s->knobs.size()) << n;
     }
   }
+}
+
+/// Names that appear twice in `names`.
+std::set<std::string> repeated(const std::vector<std::string>& names) {
+  std::set<std::string> seen, twice;
+  for (const std::string& n : names)
+    if (!seen.insert(n).second) twice.insert(n);
+  return twice;
+}
+
+TEST(Registry, NamesAreUniqueInEveryTable) {
+  EXPECT_EQ(repeated(registry_names()), std::set<std::string>{});
+  std::vector<std::string> integrators;
+  for (const tracer::Integrator* i : bench::integrators()) {
+    integrators.push_back(std::string(i->name));
+    EXPECT_EQ(repeated(i->knob_table().names()), std::set<std::string>{}) << i->name;
+  }
+  EXPECT_EQ(repeated(integrators), std::set<std::string>{});
+  EXPECT_EQ(repeated(scenes_gen::generator_names()), std::set<std::string>{});
+  for (const accel::StructureInfo& s : accel::structures()) EXPECT_EQ(repeated(s.knobs), std::set<std::string>{}) << s.name;
+}
+
+// The integrator table reaches the command line (render's --integrator and `integrators`),
+// the sweeps, and the docs' generated knob reference; every integrator completes its own knobs
+// and reads them back unchanged.
+TEST(Registry, EveryIntegratorReachesTheCommandLineSweepsAndDocs) {
+  const ProcessRun help = run(std::string(ACCELBENCH_CLI) + " render --help");
+  ProcessRun list = run(std::string(ACCELBENCH_CLI) + " integrators");
+  list.output = "\n" + list.output;
+  ASSERT_EQ(list.status, 0) << list.output;
+  ASSERT_GE(bench::integrators().size(), 4u);
+  for (const tracer::Integrator* i : bench::integrators()) {
+    const std::string n(i->name);
+    EXPECT_NE(help.output.find(n), std::string::npos) << n << " missing from render --help";
+    EXPECT_NE(list.output.find("\n" + n + " "), std::string::npos) << n << " missing from `integrators`";
+    EXPECT_NO_THROW(bench::parse_sweep_definition(
+        {{"scenes", {"five"}}, {"structures", {{{"name", "naive"}}}}, {"integrator", n}})) << n;
+    const json defaults = i->params(json::object());
+    EXPECT_EQ(i->params(defaults), defaults) << n;
+    EXPECT_EQ(defaults.size(), i->knob_table().names().size()) << n;
+  }
+  const ProcessRun md = run(std::string(ACCELBENCH_CLI) + " integrators --markdown");
+  EXPECT_EQ(md.output, bench::integrators_markdown());
+  EXPECT_NE(read(ACCELBENCH_SOURCE_DIR "/docs/tracer.md").find(bench::integrators_markdown()), std::string::npos)
+      << "docs/tracer.md: paste the output of `accelbench integrators --markdown` under its knob reference";
 }
 
 TEST(Registry, CommandLineListsEveryStructure) {

@@ -169,22 +169,27 @@ struct RedTracer {
   }
 };
 
-nlohmann::json red_params(const nlohmann::json& given) {
-  nlohmann::json p = {{"fail", false}};
-  if (given.is_object()) p.update(given);
-  return p;
-}
+struct RedParams {
+  bool fail = false;  ///< Throw from a worker thread.
+  static const knobs::KnobTable<RedParams>& knobs() {
+    static const knobs::KnobTable<RedParams> t(
+        "red", {knobs::Knob<RedParams>::boolean("fail", &RedParams::fail, "Throw from a worker thread.")});
+    return t;
+  }
+};
+
+const knobs::AnyKnobTable& red_knobs() { return RedParams::knobs(); }
 
 tracer::RenderResult render_red(const tracer::Scene& scene, const accel::AnyAccel& accel,
                                 const tracer::RenderOptions& options, const nlohmann::json& p) {
-  const bool fail = p.at("fail").get<bool>();
+  const bool fail = p.get<RedParams>().fail;
   return tracer::render_frame(scene, accel, options, tracer::FilmSampling::PixelSamples,
                               [&](const auto& isect) {
                                 return RedTracer<std::decay_t<decltype(isect)>>{isect, fail};
                               });
 }
 
-constexpr tracer::Integrator kRed{"red", "test: red where the camera ray hits", red_params,
+constexpr tracer::Integrator kRed{"red", "test: red where the camera ray hits", red_knobs,
                                   render_red};
 
 TEST(Render, AnIntegratorIsOneFunctionThroughTheSameLoop) {
@@ -226,7 +231,7 @@ TEST(Render, WindowRendersThatPartOfTheFullImage) {
   EXPECT_THROW(tracer::render(scene, a, options, tracer::whitted_integrator()),
                std::invalid_argument);
   EXPECT_THROW(tracer::render(scene, a, {}, tracer::whitted_integrator(), {{"no_such_knob", 3}}),
-               std::invalid_argument);
+               knobs::ConfigError);
 }
 
 TEST(Render, SampleOffsetsAreUniformOverThePixelForEverySampleCount) {

@@ -8,6 +8,8 @@
 #include "bench/sweep_runner.h"
 #include "bench/sweep_stats.h"
 
+#include "cli_run.h"
+
 #include <gtest/gtest.h>
 
 #include <sys/wait.h>
@@ -21,6 +23,7 @@
 #include <map>
 #include <memory>
 #include <set>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -58,7 +61,7 @@ TEST(SweepDefinition, ErrorsNameTheJsonPointer) {
       {{{"structures", {"naive", "kdtre"}}}, "/structures/1/name: unknown structure 'kdtre'"},
       {{{"structures", {{{"name", "kdtree"}, {"max_depth", json::array()}}}}},
        "/structures/0/max_depth: must list at least one value"},
-      {{{"structures", {{{"name", "kdtree"}, {"leafsize", 4}}}}}, "/structures/0/leafsize: kdtree: unknown parameter 'leafsize' (its knobs: "},
+      {{{"structures", {{{"name", "kdtree"}, {"leafsize", 4}}}}}, "/structures/0/leafsize: kdtree: unknown knob 'leafsize' (its knobs: "},
       {{{"structures", {{{"name", "octree"}, {"max_depth", {4, {{"x", 1}}}}}}}},
        "/structures/0/max_depth/1: knob value must be a number, string or boolean"},
       {{{"knobs", {{"leafsize", {1, 2}}}}}, "/knobs/leafsize: no structure in this sweep has the knob 'leafsize'"},
@@ -308,15 +311,11 @@ TEST(SweepList, PrintsTheShardsKeysWithoutMeasuring) {
     const std::string cmd =
         std::string(ACCELBENCH_CLI) + " sweep --config " + (dir / "tiny.json").string() +
         " --out " + (dir / "never.json").string() + " --shard " + std::to_string(i) + "/3 --list";
-    std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen(cmd.c_str(), "r"), pclose);
-    ASSERT_TRUE(pipe);
+    const cli_run::CliRun list = cli_run::run(cmd, /*join_stderr=*/false);
+    ASSERT_EQ(list.status, 0);
     std::vector<std::string> keys;
-    char line[4096];
-    while (std::fgets(line, sizeof line, pipe.get())) {
-      std::string key(line);
-      if (!key.empty() && key.back() == '\n') key.pop_back();
-      keys.push_back(key);
-    }
+    std::istringstream lines(list.output);
+    for (std::string key; std::getline(lines, key);) keys.push_back(key);
     std::vector<std::string> expected;
     for (const auto& c : bench::shard(all, i, 3)) expected.push_back(c.key);
     EXPECT_EQ(keys, expected) << "shard " << i;
@@ -770,7 +769,7 @@ TEST(SweepIntegratorKnobs, CrossesThemAndRecordsTheMaps) {
     }
     return std::string("(no error)");
   }();
-  EXPECT_NE(got.find("/integrator_knobs/cone_k/1: photon: parameter 'cone_k' must be in [1.0, "), std::string::npos)
+  EXPECT_NE(got.find("/integrator_knobs/cone_k/1: photon: knob 'cone_k' must be in [1.0, "), std::string::npos)
       << got;
   fs::remove_all(dir);
 }

@@ -104,7 +104,7 @@ TEST(WhittedParams, BadKnobsNameThemselves) {
   const auto message = [](const json& knobs) {
     try {
       tracer::whitted_integrator().params(knobs);
-    } catch (const std::invalid_argument& e) {
+    } catch (const knobs::ConfigError& e) {
       return std::string(e.what());
     }
     return std::string("no error");

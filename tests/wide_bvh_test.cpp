@@ -133,7 +133,7 @@ TEST(WideBvh, MemoryBudgetErrorNamesTheKnob) {
   try {
     accel::Bvh4(boxes, {}, accel::BuildLimits{2048});
     FAIL() << "expected ConfigError";
-  } catch (const accel::ConfigError& e) {
+  } catch (const knobs::ConfigError& e) {
     EXPECT_NE(std::string(e.what()).find("--max-memory"), std::string::npos) << e.what();
     EXPECT_EQ(std::string(e.what()).rfind("bvh4: ", 0), 0u) << e.what();
   }

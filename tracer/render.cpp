@@ -96,39 +96,6 @@ RenderResult render(const Scene& scene, const accel::AnyAccel& accel, const Rend
   return integrator.render(scene, accel, options, full);
 }
 
-nlohmann::json no_params(std::string_view integrator, const nlohmann::json& given) {
-  if (!given.is_null() && !given.is_object())
-    throw std::invalid_argument(std::string(integrator) + ": knobs must be a JSON object, got " +
-                                given.dump());
-  if (!given.is_null() && !given.empty())
-    throw std::invalid_argument(std::string(integrator) + ": unknown knob '" +
-                                given.begin().key() + "' (it has none)");
-  return nlohmann::json::object();
-}
-
-nlohmann::json precision_params(std::string_view integrator, const nlohmann::json& given) {
-  if (!given.is_null() && !given.is_object())
-    throw std::invalid_argument(std::string(integrator) + ": knobs must be a JSON object, got " +
-                                given.dump());
-  nlohmann::json out = {{"precision", "float"}};
-  if (given.is_null()) return out;
-  for (const auto& [key, value] : given.items()) {
-    if (key != "precision")
-      throw std::invalid_argument(std::string(integrator) + ": unknown knob '" + key +
-                                  "' (known: precision)");
-    if (value != "float" && value != "double")
-      throw std::invalid_argument(std::string(integrator) +
-                                  ": knob precision: must be \"float\" or \"double\", got " +
-                                  value.dump());
-    out["precision"] = value;
-  }
-  return out;
-}
-
-Precision precision_of(const nlohmann::json& params) {
-  return params.value("precision", "float") == "double" ? Precision::Double : Precision::Float;
-}
-
 void sample_offset(int x, int y, int s, int spp, float& jx, float& jy, std::uint64_t seed) {
   if (spp <= 1) {
     jx = jy = 0.5f;

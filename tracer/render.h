@@ -14,6 +14,7 @@
 #include "scene.h"
 
 #include "accel/accel.h"
+#include "knobs/knob_table.h"
 
 #include <nlohmann/json.hpp>
 
@@ -55,10 +56,9 @@ struct RenderResult {
 struct Integrator {
   std::string_view name;         ///< Its name in --integrator, scene JSON and results rows.
   std::string_view description;  ///< One line for --help and the docs.
-  /// Every knob with its default filled in, from the given ones (a JSON object, possibly empty).
-  /// Throws std::invalid_argument or accel::ConfigError, one line naming the knob, on an unknown
-  /// or bad knob.
-  nlohmann::json (*params)(const nlohmann::json& given);
+  /// Its knob table (knobs/knob_table.h): what --param, scene files, sweeps, fronts and the docs
+  /// know of its knobs.
+  const knobs::AnyKnobTable& (*knob_table)();
   /// Renders with knobs already completed by `params`. Called through tracer::render only.
   RenderResult (*render)(const Scene& scene, const accel::AnyAccel& accel,
                          const RenderOptions& options, const nlohmann::json& params);
@@ -69,12 +69,23 @@ struct Integrator {
   /// photon maps' memory against options.limits); throws like `params`. nullptr: nothing to check.
   void (*check)(const Scene& scene, const RenderOptions& options,
                 const nlohmann::json& params) = nullptr;
+  /// The knobs at which this integrator renders the reference for another integrator's fronts
+  /// (a JSON object; "" when it makes none): see knobs::Front::reference_integrator.
+  const char* reference_for_others = "";
+  /// For a reference whose error is not all noise: the knobs (those that differ) of a weaker
+  /// render whose distance from a reference with knobs `reference` estimates the reference's own
+  /// bias. nullptr: the reference's error is its noise.
+  nlohmann::json (*bias_check)(const nlohmann::json& reference) = nullptr;
+
+  /// Every knob with its default filled in, from the given ones (a JSON object, possibly empty).
+  /// Throws knobs::ConfigError, one line naming the knob, on an unknown or bad knob.
+  nlohmann::json params(const nlohmann::json& given) const { return knob_table().complete(given); }
 };
 
 /// Renders `scene` through `accel`, which must have been built over
 /// scene.geometry.primitive_bounds(), with `integrator` and its knobs `params` (a JSON object;
 /// missing knobs take their defaults). Throws std::invalid_argument on bad options, and
-/// std::invalid_argument or accel::ConfigError on bad knobs or a passed memory budget; an
+/// knobs::ConfigError on bad knobs or a passed memory budget; an
 /// exception in a worker thread stops the render and is rethrown here.
 RenderResult render(const Scene& scene, const accel::AnyAccel& accel, const RenderOptions& options,
                     const Integrator& integrator,
@@ -86,20 +97,6 @@ const Integrator& whitted_integrator();
 
 /// Eric Haines' SPD test rules (tracer/spd_render.h): rays at pixel corners, tree depth 5.
 const Integrator& spd_integrator();
-
-/// The knobs of an integrator whose only knob is "precision": "float" (the default) traces
-/// through the given structure in float; "double" traces the naive loop over every primitive in
-/// double precision, whatever the structure (the reference the float renderer is measured
-/// against, tracer/naive_reference.h). Throws std::invalid_argument, one line naming the knob,
-/// on any other key or value. Returns the completed knobs.
-nlohmann::json precision_params(std::string_view integrator, const nlohmann::json& given);
-
-/// The precision a completed knob object (from precision_params) asks for.
-Precision precision_of(const nlohmann::json& params);
-
-/// The knobs of an integrator that has none: `given` must be empty (else std::invalid_argument
-/// naming the first key); returns an empty object.
-nlohmann::json no_params(std::string_view integrator, const nlohmann::json& given);
 
 /// Sub-pixel offset in [0, 1)^2 of sample `s` of `spp` in pixel (x, y): one sample in each stratum
 /// of a rows x (spp / rows) grid (rows: the largest divisor of spp not above sqrt(spp); square

@@ -8,17 +8,40 @@
 // be told from the error of storing the scene in float.
 
 #include "accel/geometry.h"
+#include "knobs/knob_table.h"
 
 #include <glm/vec3.hpp>
 
 #include <cstdint>
 #include <limits>
+#include <string>
+#include <utility>
+#include <vector>
 #include <type_traits>
 
 namespace tracer {
 
 /// Floating-point type of the tracer's geometric arithmetic.
 enum class Precision : std::uint8_t { Float, Double };
+
+/// The name of the knob that chooses the precision (every integrator that has one: the stability
+/// suite renders each scene at both).
+inline constexpr const char* kPrecisionKnob = "precision";
+
+/// A precision's spelling as a knob value: "float" or "double".
+inline const char* precision_name(Precision p) { return p == Precision::Double ? "double" : "float"; }
+
+/// The `precision` knob of an integrator whose parameter struct P stores it in `member`.
+template <class P>
+knobs::Knob<P> precision_knob(Precision P::*member) {
+  return knobs::Knob<P>::choice(kPrecisionKnob, member,
+                                {{precision_name(Precision::Float), Precision::Float},
+                                 {precision_name(Precision::Double), Precision::Double}},
+                                "Arithmetic of the whole tracer: double (the naive loop over every primitive in "
+                                "double; the structure is not used) is the reference, float traces through the "
+                                "structure and is faster.")
+      .shorthand();
+}
 
 template <class T>
 using Vec3T = glm::vec<3, T>;

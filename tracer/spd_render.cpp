@@ -195,18 +195,29 @@ class SpdTracer {
   float intensity_;
 };
 
+/// The SPD integrator's one knob.
+struct SpdParams {
+  Precision precision = Precision::Float;  ///< Arithmetic of the whole tracer.
+
+  static const knobs::KnobTable<SpdParams>& knobs() {
+    static const knobs::KnobTable<SpdParams> table(
+        "spd", {precision_knob(&SpdParams::precision)});
+    return table;
+  }
+};
+
 RenderResult render_spd(const Scene& scene, const accel::AnyAccel& accel,
                         const RenderOptions& options, const nlohmann::json& params) {
   std::vector<NffSurface> surfaces;
   surfaces.reserve(scene.materials.size());
   for (const Material& m : scene.materials) surfaces.push_back(nff_surface(m));
-  return render_frame_at(precision_of(params), scene, accel, options, FilmSampling::PixelCorners,
+  return render_frame_at(SpdParams::knobs().from_json(params).precision, scene, accel, options, FilmSampling::PixelCorners,
                          [&scene, &surfaces](const auto& isect) {
                            return SpdTracer<std::decay_t<decltype(isect)>>(scene, isect, surfaces);
                          });
 }
 
-nlohmann::json spd_params(const nlohmann::json& given) { return precision_params("spd", given); }
+const knobs::AnyKnobTable& spd_knobs() { return SpdParams::knobs(); }
 
 }  // namespace
 
@@ -214,7 +225,7 @@ const Integrator& spd_integrator() {
   static constexpr Integrator kSpd{
       "spd",
       "Eric Haines' SPD test rules: eye rays at pixel corners, tree depth 5, NFF shading",
-      spd_params, render_spd};
+      spd_knobs, render_spd};
   return kSpd;
 }
 

@@ -38,7 +38,7 @@ namespace {
 
 RenderResult render_whitted(const Scene& scene, const accel::AnyAccel& accel,
                             const RenderOptions& options, const nlohmann::json& knobs) {
-  const WhittedParams p = whitted_params_from_json(knobs);
+  const WhittedParams p = WhittedParams::knobs().from_json(knobs);
   const RenderSettings limits = p.limits(scene);
   const int spp = p.samples_per_pixel(scene);
   RenderResult r = render_frame_at(p.precision, scene, accel, options,
@@ -48,17 +48,15 @@ RenderResult render_whitted(const Scene& scene, const accel::AnyAccel& accel,
                                                                                    limits);
                                    });
   // The settings in effect, the scene's where no knob was given.
-  r.stats["effective"] = {{"max_depth", limits.max_depth},
-                          {"min_weight", limits.min_weight},
-                          {"spp", spp},
-                          {"seed", p.seed},
-                          {"precision", p.precision == Precision::Double ? "double" : "float"}};
+  WhittedParams effective = p;
+  effective.max_depth = limits.max_depth;
+  effective.min_weight = limits.min_weight;
+  effective.spp = spp;
+  r.stats["effective"] = WhittedParams::knobs().to_json(effective);
   return r;
 }
 
-nlohmann::json whitted_params(const nlohmann::json& given) {
-  return to_json(whitted_params_from_json(given));
-}
+const knobs::AnyKnobTable& whitted_knobs() { return WhittedParams::knobs(); }
 
 }  // namespace
 
@@ -67,7 +65,7 @@ const Integrator& whitted_integrator() {
       "whitted",
       "Whitted ray tracing: point lights with shadow rays, diffuse + Phong, mirrors, Fresnel "
       "dielectrics",
-      whitted_params, render_whitted};
+      whitted_knobs, render_whitted};
   return kWhitted;
 }
 

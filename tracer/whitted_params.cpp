@@ -1,29 +1,8 @@
 #include "whitted_params.h"
 
 #include <algorithm>
-#include <cmath>
-#include <limits>
-#include <stdexcept>
-#include <string>
 
 namespace tracer {
-
-namespace {
-
-[[noreturn]] void fail(const std::string& knob, const std::string& what, const nlohmann::json& v) {
-  throw std::invalid_argument("whitted: knob '" + knob + "' must be " + what + ", got " + v.dump());
-}
-
-long long integer(const nlohmann::json& v, const std::string& knob, long long lo, long long hi,
-                  const std::string& range) {
-  if (!v.is_number_integer()) fail(knob, "an integer " + range, v);
-  if (v.is_number_unsigned() && v.get<std::uint64_t>() > std::uint64_t(hi)) fail(knob, range, v);
-  const long long x = v.get<long long>();
-  if (x < lo || x > hi) fail(knob, range, v);
-  return x;
-}
-
-}  // namespace
 
 RenderSettings WhittedParams::limits(const Scene& scene) const {
   RenderSettings r = scene.render;
@@ -36,42 +15,38 @@ int WhittedParams::samples_per_pixel(const Scene& scene) const {
   return spp > 0 ? spp : std::max(1, scene.camera.samples_per_pixel);
 }
 
-nlohmann::json to_json(const WhittedParams& p) {
-  return {{"max_depth", p.max_depth},
-          {"min_weight", p.min_weight},
-          {"spp", p.spp},
-          {"seed", p.seed},
-          {"precision", p.precision == Precision::Double ? "double" : "float"}};
-}
-
-WhittedParams whitted_params_from_json(const nlohmann::json& j) {
-  WhittedParams p;
-  if (j.is_null()) return p;
-  if (!j.is_object()) throw std::invalid_argument("whitted: knobs must be a JSON object, got " + j.dump());
-  for (const auto& [key, v] : j.items()) {
-    if (key == "max_depth") {
-      p.max_depth = int(integer(v, key, 0, 1000, "in [1, 1000], or 0 for the scene's"));
-    } else if (key == "min_weight") {
-      if (!v.is_number()) fail(key, "a number in [0, 1], or negative for the scene's", v);
-      p.min_weight = v.get<double>();
-      if (!std::isfinite(p.min_weight) || p.min_weight > 1.0)
-        fail(key, "in [0, 1], or negative for the scene's", v);
-      if (p.min_weight < 0.0) p.min_weight = -1.0;
-    } else if (key == "spp") {
-      p.spp = int(integer(v, key, 0, 65536, "in [1, 65536], or 0 for the scene's"));
-    } else if (key == "seed") {
-      if (!v.is_number_unsigned() && !(v.is_number_integer() && v.get<long long>() >= 0))
-        fail(key, "an integer in [0, 2^64-1]", v);
-      p.seed = v.get<std::uint64_t>();
-    } else if (key == "precision") {
-      if (v != "float" && v != "double") fail(key, "\"float\" or \"double\"", v);
-      p.precision = v == "double" ? Precision::Double : Precision::Float;
-    } else {
-      throw std::invalid_argument("whitted: unknown knob '" + key +
-                                  "' (its knobs: max_depth, min_weight, spp, seed, precision)");
-    }
-  }
-  return p;
+const knobs::KnobTable<WhittedParams>& WhittedParams::knobs() {
+  using K = knobs::Knob<WhittedParams>;
+  // max_depth and min_weight share one front reference, the scene at depth 64 with no weight
+  // cut-off; its own truncation error is estimated by its difference from depth 48 (the light of
+  // bounces 49-64 bounds that of all bounces past 64 while every 16 bounces carry at most half of
+  // the 16 before). spp's reference is 2 x 1024 samples per pixel with independent jitter, at the
+  // front's own depth and weight; its noise is estimated from the two halves. precision's is the
+  // double render at the front's other knobs, so double has error 0 and float's error is its
+  // distance from double; the reference's own rounding is not estimated (there is no wider type
+  // to check it against), its floor reads 0.
+  static constexpr const char* kDeepReference = R"({"max_depth": 64, "min_weight": 0})";
+  static constexpr const char* kDeepCheck = R"({"max_depth": 48, "min_weight": 0})";
+  static const knobs::KnobTable<WhittedParams> table(
+      "whitted",
+      {K::integer("max_depth", &WhittedParams::max_depth, 0, 1000, "levels",
+                  "Recursion depth (camera ray = 1): lower cuts off reflected and refracted light; "
+                  "0 = the scene's.")
+           .front({"[1, 2, 3, 4, 6, 8, 12, 16, 24, 32, 48, 64]", "", kDeepReference, kDeepCheck, false}),
+       K::number("min_weight", &WhittedParams::min_weight, -1.0, 1.0, "",
+                 "Paths whose weight falls below this are cut: higher is faster and darker; "
+                 "negative = the scene's.")
+           .front({"[0.3, 0.1, 0.03, 0.01, 0.003, 0.001, 0.0003, 0.0001, 0]", "", kDeepReference,
+                   kDeepCheck, false}),
+       K::integer("spp", &WhittedParams::spp, 0, 65536, "samples",
+                  "Camera rays per pixel: more samples average away aliasing at edges; 0 = the "
+                  "camera's.")
+           .front({"[1, 2, 4, 8, 16, 32, 64]", "", R"({"spp": 1024})", "", true}),
+       K::integer(knobs::kSeedKnob, &WhittedParams::seed, 0, ~0ull, "",
+                  "Seed of the sub-pixel jitter; 0 = the fixed pattern of every earlier render."),
+       precision_knob(&WhittedParams::precision)
+           .front({R"(["float", "double"])", "", R"({"precision": "double"})", "", false})});
+  return table;
 }
 
 }  // namespace tracer

@@ -7,7 +7,7 @@
 #include "scalar.h"
 #include "scene.h"
 
-#include <nlohmann/json.hpp>
+#include "knobs/knob_table.h"
 
 #include <cstdint>
 
@@ -16,7 +16,7 @@ namespace tracer {
 struct WhittedParams {
   /// Maximum recursion depth (camera ray = 1), in [1, 1000]; 0 = the scene's render.max_depth.
   int max_depth = 0;
-  /// Paths whose weight falls below this are cut, in [0, 1]; negative = the scene's min_weight.
+  /// Paths whose weight falls below this are cut, in [0, 1]; -1 = the scene's min_weight.
   double min_weight = -1.0;
   /// Camera rays per pixel, in [1, 65536]; 0 = the scene camera's samples_per_pixel.
   int spp = 0;
@@ -32,14 +32,9 @@ struct WhittedParams {
   RenderSettings limits(const Scene& scene) const;
   /// Samples per pixel on `scene`: the knob, or the camera's.
   int samples_per_pixel(const Scene& scene) const;
+
+  /// The table: JSON, --param, sweeps and the fronts of max_depth, min_weight, spp and precision.
+  static const knobs::KnobTable<WhittedParams>& knobs();
 };
-
-/// Every knob, spelled out.
-nlohmann::json to_json(const WhittedParams& p);
-
-/// The defaults with the knobs of `j` (an object, or null) applied. Throws
-/// std::invalid_argument "whitted: ..." naming an unknown knob, a wrong type or a value out of
-/// range.
-WhittedParams whitted_params_from_json(const nlohmann::json& j);
 
 }  // namespace tracer

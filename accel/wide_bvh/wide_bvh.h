@@ -10,7 +10,7 @@
 #include "accel/bvh.h"
 #include "accel/geometry.h"
 #include "accel/interval_slack.h"
-#include "accel/knob_table.h"
+#include "knobs/knob_table.h"
 #include "accel/leaf_boxes.h"
 #include "accel/leaf_loop.h"
 #include "accel/ray_packet.h"
@@ -47,7 +47,7 @@ struct WideBvhParams {
   float traversal_cost = 3.0f;
 
   /// Name, range, unit and doc line of every knob above.
-  static const KnobTable<WideBvhParams>& knobs();
+  static const knobs::KnobTable<WideBvhParams>& knobs();
 };
 
 /// W children per node, structure-of-arrays: the boxes' six planes (lo x, hi x, lo y, hi y,
@@ -75,7 +75,7 @@ class WideBvh {
   static constexpr int kStackSize = (W - 1) * 64 + 1;
 
   WideBvh() = default;
-  /// Builds over `boxes` (primitive id = index). Throws ConfigError for a bad knob or when the
+  /// Builds over `boxes` (primitive id = index). Throws knobs::ConfigError for a bad knob or when the
   /// build would pass the memory budget of `limits`.
   WideBvh(std::span<const Aabb> boxes, const Params& params, const BuildLimits& limits);
   explicit WideBvh(std::span<const Aabb> boxes, const Params& params = {});

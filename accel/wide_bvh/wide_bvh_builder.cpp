@@ -15,20 +15,22 @@
 namespace accel {
 
 template <int W>
-const KnobTable<WideBvhParams<W>>& WideBvhParams<W>::knobs() {
+const knobs::KnobTable<WideBvhParams<W>>& WideBvhParams<W>::knobs() {
   using P = WideBvhParams<W>;
-  using K = Knob<P>;
-  static const KnobTable<P> table(
+  using K = knobs::Knob<P>;
+  static const knobs::KnobTable<P> table(
       W == 4 ? "bvh4" : "bvh8",
       {K::integer("bins", &P::bins, 8, 256, "bins per axis",
                   "Centroid bins per axis the SAH evaluates; more bins approach a full sweep.")
            .probes({8, 256}),
        K::integer("max_leaf_size", &P::max_leaf_size, 1, 255, "primitives",
                   "A range holding more primitives is always split; at or below it the SAH decides.")
+           .shorthand("--leaf-size")
            .crossed()
            .probes({1, 2, 4, 8, 16}),
        K::integer("max_depth", &P::max_depth, 0, 64, "levels",
                   "Deepest level of wide nodes (root = 0): a range there is a leaf whatever it holds.")
+           .shorthand()
            .crossed()
            .probes({0, 1, 2, 3, 5, 8, 12, 20}),
        K::number("traversal_cost", &P::traversal_cost, 0.0, 1000.0, "primitive tests",
@@ -196,7 +198,7 @@ void WideBvh<W>::build(std::span<const Aabb> boxes, std::uint64_t budget_bytes) 
   const std::uint64_t bytes = std::max<std::uint64_t>(n, 1) * sizeof(Node) +
                               n * (sizeof(std::uint32_t) + BinnedSah::kBytesPerPrimitive + 6 * sizeof(float));
   if (bytes > budget_bytes)
-    throw ConfigError(std::string(kName) + ": " + std::to_string(n) + " primitives need up to " + std::to_string(bytes) +
+    throw knobs::ConfigError(std::string(kName) + ": " + std::to_string(n) + " primitives need up to " + std::to_string(bytes) +
                       " bytes, over the memory budget of " + std::to_string(budget_bytes) +
                       " bytes (raise --max-memory)");
   nodes_.clear();

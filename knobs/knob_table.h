@@ -4,22 +4,24 @@
 // struct. The table drives JSON in and out, validation with one-line messages, the generic
 // `--knob name=value` command-line flag, and the generated knob reference in the docs.
 //
-// Not tied to acceleration structures: any parameter struct can have a table (the structures'
-// params, an integrator's, the tracer's accuracy knobs), and every library may use it since
-// every library depends on accel/.
+// This is the one knob system of accelbench: the structures' params, the integrators' (whitted,
+// spd, photon, ppm), the photon trees' and the gather's all have a table, and nothing else reads
+// or writes a knob. A table also says which knobs get a shorthand flag on the command line
+// (shorthand()) and which trade accuracy for time in `accelbench fronts` (front()). It depends on
+// nlohmann-json only, so every library can use it.
 //
 //   struct MyParams {
 //     int depth = 5;  ///< ...
-//     static const accel::KnobTable<MyParams>& knobs() {
-//       static const accel::KnobTable<MyParams> t("mine", {
-//           accel::Knob<MyParams>::integer("depth", &MyParams::depth, 0, 64, "levels", "What it does.")});
+//     static const knobs::KnobTable<MyParams>& knobs() {
+//       static const knobs::KnobTable<MyParams> t("mine", {
+//           knobs::Knob<MyParams>::integer("depth", &MyParams::depth, 0, 64, "levels", "What it does.")});
 //       return t;
 //     }
 //   };
 //   MyParams p = MyParams::knobs().from_json(j);   // throws ConfigError, one line
-//   nlohmann::json out = MyParams::knobs().to_json(p);
+//   nlohmann::json out = MyParams::knobs().to_json(p);   // or nlohmann::json(p)
 
-#include "config_error.h"
+#include "knobs/config_error.h"
 
 #include <nlohmann/json.hpp>
 
@@ -31,13 +33,19 @@
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
 #include <utility>
 #include <vector>
 
-namespace accel {
+namespace knobs {
+
+/// The name of every table's random-seed knob. The harness renders a knob set again with
+/// independent noise by setting it (fronts' seeds, the halves of a stochastic reference); a
+/// table without it has no noise to vary.
+inline constexpr const char* kSeedKnob = "seed";
 
 /// The kind of value a knob holds.
 enum class KnobType : std::uint8_t {
@@ -47,22 +55,50 @@ enum class KnobType : std::uint8_t {
   Choice,   ///< One of a list of spellings (an enum class in the struct).
 };
 
+/// How `accelbench fronts` studies a knob that trades accuracy for time (docs/accuracy.md).
+struct Front {
+  /// The values a front tries by default, cheapest first (a JSON array).
+  const char* values = "[]";
+  /// The integrator of the reference render; "" = the knob's own. A consistent estimator
+  /// (progressive photon mapping) makes the reference for a biased one's knobs, at that
+  /// integrator's own reference knobs.
+  std::string_view reference_integrator;
+  /// The reference's knobs for the knob's own integrator (a JSON object): set so that this
+  /// knob's error is negligible. "" with another reference integrator.
+  const char* reference = "";
+  /// Knobs of a second, weaker reference (a JSON object, "" for none) whose difference from the
+  /// reference estimates the reference's own truncation error (deterministic references).
+  const char* check = "";
+  /// The reference is stochastic: rendered twice with independent seeds, its noise estimated
+  /// from the two halves.
+  bool stochastic = false;
+};
+
 /// One knob of the parameter struct P.
 template <class P>
 class Knob {
  public:
-  /// An integer member in [lo, hi].
+  /// An integer member in [lo, hi] (hi up to 2^64 - 1, for seeds).
   template <std::integral T>
     requires(!std::same_as<T, bool>)
-  static Knob integer(const char* name, T P::*member, long long lo, long long hi, const char* unit,
-                      const char* doc) {
+  static Knob integer(const char* name, T P::*member, long long lo, unsigned long long hi,
+                      const char* unit, const char* doc) {
     Knob k(name, KnobType::Integer, unit, doc);
     k.lo_ = double(lo);
     k.hi_ = double(hi);
     k.ilo_ = lo;
     k.ihi_ = hi;
     k.get_ = [member](const P& p) { return nlohmann::json(p.*member); };
-    k.set_ = [member](P& p, const nlohmann::json& v) { p.*member = T(v.get<long long>()); };
+    k.set_ = [member](P& p, const nlohmann::json& v) {
+      p.*member = v.is_number_unsigned() ? T(v.get<std::uint64_t>()) : T(v.get<long long>());
+    };
+    k.valid_ = [member, lo, hi](const P& p) {
+      const T x = p.*member;
+      if constexpr (std::is_signed_v<T>)
+        if (x < 0) return static_cast<long long>(x) >= lo;
+      const auto u = static_cast<unsigned long long>(x);
+      return (lo <= 0 || u >= static_cast<unsigned long long>(lo)) && u <= hi;
+    };
     return k;
   }
 
@@ -75,6 +111,50 @@ class Knob {
     k.hi_ = hi;
     k.get_ = [member](const P& p) { return nlohmann::json(shortest_double(p.*member)); };
     k.set_ = [member](P& p, const nlohmann::json& v) { p.*member = T(v.get<double>()); };
+    k.number_member_ = [member](const P& p) { return std::optional<double>(double(p.*member)); };
+    return k;
+  }
+
+  /// An optional floating-point member in [lo, hi], or the word "auto" (empty: the owner picks
+  /// the value).
+  template <std::floating_point T>
+  static Knob number_or_auto(const char* name, std::optional<T> P::*member, double lo, double hi,
+                             const char* unit, const char* doc) {
+    Knob k(name, KnobType::Number, unit, doc);
+    k.lo_ = lo;
+    k.hi_ = hi;
+    k.word_ = "auto";
+    k.get_ = [member](const P& p) {
+      return (p.*member) ? nlohmann::json(shortest_double(*(p.*member))) : nlohmann::json("auto");
+    };
+    k.set_ = [member](P& p, const nlohmann::json& v) {
+      if (v.is_string()) p.*member = std::nullopt;
+      else p.*member = T(v.get<double>());
+    };
+    k.number_member_ = [member](const P& p) {
+      return (p.*member) ? std::optional<double>(double(*(p.*member))) : std::nullopt;
+    };
+    return k;
+  }
+
+  /// A floating-point member in [lo, largest finite], or the word "inf" for +infinity.
+  template <std::floating_point T>
+  static Knob number_or_infinity(const char* name, T P::*member, double lo, const char* unit,
+                                 const char* doc) {
+    Knob k(name, KnobType::Number, unit, doc);
+    k.lo_ = lo;
+    k.hi_ = std::numeric_limits<double>::infinity();
+    k.word_ = "inf";
+    k.get_ = [member](const P& p) {
+      return std::isinf(p.*member) ? nlohmann::json("inf") : nlohmann::json(shortest_double(p.*member));
+    };
+    k.set_ = [member](P& p, const nlohmann::json& v) {
+      p.*member = v.is_string() ? std::numeric_limits<T>::infinity() : T(v.get<double>());
+    };
+    k.number_member_ = [member](const P& p) {
+      return p.*member == std::numeric_limits<T>::infinity() ? std::nullopt
+                                                              : std::optional<double>(double(p.*member));
+    };
     return k;
   }
 
@@ -101,6 +181,11 @@ class Knob {
       for (const auto& [spelling, e] : names)
         if (choice_spelling(v) == spelling) p.*member = e;
     };
+    k.valid_ = [member, names](const P& p) {
+      for (const auto& [spelling, e] : names)
+        if (p.*member == e) return true;
+      return false;
+    };
     return k;
   }
 
@@ -123,6 +208,24 @@ class Knob {
     return *this;
   }
 
+  /// Makes the lower end of a number's range open: (lo, hi].
+  Knob& open_below() {
+    open_below_ = true;
+    return *this;
+  }
+  /// Gives the knob a flag of its own on the commands that take knobs (`max_depth` as
+  /// `--max-depth`, or the spelling given), beside the generic `--knob max_depth=...`.
+  Knob& shorthand(const char* flag = nullptr) {
+    shorthand_ = true;
+    if (flag) flag_ = flag;
+    return *this;
+  }
+  /// Marks a knob that trades accuracy for time, and how `accelbench fronts` studies it.
+  Knob& front(Front f) {
+    front_ = f;
+    return *this;
+  }
+
   const std::string& name() const { return name_; }  ///< Spelling in JSON and on --knob.
   KnobType type() const { return type_; }             ///< Kind of value.
   const std::string& unit() const { return unit_; }   ///< Unit of the value ("" when none).
@@ -131,15 +234,26 @@ class Knob {
   double max() const { return hi_; }                  ///< Largest accepted number.
   /// Spellings of a Choice knob, in display order.
   const std::vector<std::string>& choices() const { return choices_; }
-  bool is_variant() const { return variant_; }  ///< See variant().
-  bool is_crossed() const { return crossed_; }  ///< See crossed().
+  bool is_variant() const { return variant_; }      ///< See variant().
+  bool is_crossed() const { return crossed_; }      ///< See crossed().
+  bool is_shorthand() const { return shorthand_; }  ///< See shorthand().
+  /// See front(); empty for a knob fronts do not study.
+  const std::optional<Front>& accuracy_front() const { return front_; }
+  /// The shorthand flag's name: the spelling given to shorthand(), else "--" and the name with
+  /// '_' as '-'.
+  std::string flag() const {
+    if (!flag_.empty()) return flag_;
+    std::string f = "--" + name_;
+    std::replace(f.begin(), f.end(), '_', '-');
+    return f;
+  }
 
   /// The knob's value in `p`, as JSON.
   nlohmann::json get(const P& p) const { return get_(p); }
   /// The default: the value in a default-constructed P.
   nlohmann::json default_value() const { return get_(P{}); }
 
-  /// Checks `v` and stores it in `p`; throws ConfigError "<owner>: parameter '<name>' must
+  /// Checks `v` and stores it in `p`; throws ConfigError "<owner>: knob '<name>' must
   /// be ..., got <v>".
   void set(P& p, const nlohmann::json& v, std::string_view owner) const {
     check(v, owner);
@@ -151,16 +265,19 @@ class Knob {
     switch (type_) {
       case KnobType::Integer: {
         if (!v.is_number_integer()) fail_type(owner, "an integer", v);
-        const bool too_big = v.is_number_unsigned() &&
-                             v.get<std::uint64_t>() > std::uint64_t(std::numeric_limits<long long>::max());
-        const long long x = too_big ? 0 : v.get<long long>();
-        if (too_big || x < ilo_ || x > ihi_) fail_range(owner, v);
+        const bool in_range = v.is_number_unsigned()
+                                  ? v.get<std::uint64_t>() <= ihi_ &&
+                                        (ilo_ <= 0 || v.get<std::uint64_t>() >= std::uint64_t(ilo_))
+                                  : v.get<long long>() >= ilo_ &&
+                                        (v.get<long long>() < 0 || std::uint64_t(v.get<long long>()) <= ihi_);
+        if (!in_range) fail_range(owner, v);
         return;
       }
       case KnobType::Number: {
-        if (!v.is_number()) fail_type(owner, "a number", v);
+        if (!word_.empty() && v.is_string() && v.get<std::string>() == word_) return;
+        if (!v.is_number()) fail_type(owner, word_.empty() ? "a number" : "a number or \"" + word_ + "\"", v);
         const double x = v.get<double>();
-        if (!(x >= lo_ && x <= hi_)) fail_range(owner, v);
+        if (!(open_below_ ? x > lo_ : x >= lo_) || !(x <= hi_)) fail_range(owner, v);
         return;
       }
       case KnobType::Boolean:
@@ -175,7 +292,23 @@ class Knob {
     }
   }
 
-  /// The accepted values in words: "[0, 64]", "true|false", "midpoint|sah".
+  /// Whether the knob's value in `p` is acceptable: check() without building JSON, cheap
+  /// enough for a hot path (a gather validates its knobs on every call).
+  bool valid(const P& p) const {
+    switch (type_) {
+      case KnobType::Number: {
+        const std::optional<double> x = number_member_(p);
+        return !x || ((open_below_ ? *x > lo_ : *x >= lo_) && *x <= hi_);
+      }
+      case KnobType::Boolean: return true;
+      case KnobType::Integer:
+      case KnobType::Choice: return valid_(p);
+    }
+    return false;
+  }
+
+  /// The accepted values in words: "[0, 64]", "(0, 1]", "[0, 3.4e38] or \"auto\"", "true|false",
+  /// "midpoint|sah".
   std::string range_text() const {
     std::string lo, hi;
     switch (type_) {
@@ -186,14 +319,19 @@ class Knob {
       case KnobType::Number:
         lo = nlohmann::json(lo_).dump();
         hi = nlohmann::json(hi_).dump();
+        // No upper end: "> 0.0 or "inf"".
+        if (std::isinf(hi_)) return (open_below_ ? "> " : ">= ") + lo + (word_.empty() ? "" : " or \"" + word_ + "\"");
         break;
       case KnobType::Boolean: return "true|false";
       case KnobType::Choice: return choice_text();
     }
-    std::string out = "[";
+    std::string out = open_below_ ? "(" : "[";
     out.append(lo).append(", ").append(hi).append("]");
+    if (!word_.empty()) out.append(" or \"").append(word_).append("\"");
     return out;
   }
+  /// The word a number knob also accepts ("auto", "inf"), or "".
+  const std::string& word() const { return word_; }
   /// "integer", "number", "boolean" or "choice".
   const char* type_name() const {
     switch (type_) {
@@ -210,8 +348,12 @@ class Knob {
     if (!probes_.empty()) return probes_;
     std::vector<nlohmann::json> out;
     switch (type_) {
-      case KnobType::Integer: out = {ilo_, ihi_}; break;
-      case KnobType::Number: out = {lo_, hi_}; break;
+      case KnobType::Integer: out = {nlohmann::json(ilo_), nlohmann::json(ihi_)}; break;
+      case KnobType::Number:
+        if (!open_below_) out.push_back(lo_);
+        if (std::isfinite(hi_)) out.push_back(hi_);
+        if (!word_.empty()) out.push_back(word_);
+        break;
       case KnobType::Boolean: out = {false, true}; break;
       case KnobType::Choice: out.assign(choices_.begin(), choices_.end()); break;
     }
@@ -253,13 +395,21 @@ class Knob {
     return s;
   }
   [[noreturn]] void fail(std::string_view owner, const std::string& what) const {
-    throw ConfigError(std::string(owner) + ": parameter '" + name_ + "' " + what);
+    throw ConfigError(std::string(owner) + ": knob '" + name_ + "' " + what);
   }
-  [[noreturn]] void fail_type(std::string_view owner, const char* want, const nlohmann::json& v) const {
-    fail(owner, std::string("must be ") + want + ", got " + v.dump());
+  [[noreturn]] void fail_type(std::string_view owner, const std::string& want, const nlohmann::json& v) const {
+    fail(owner, std::string("must be ") + want + ", got " + value_text(v));
   }
   [[noreturn]] void fail_range(std::string_view owner, const nlohmann::json& v) const {
-    fail(owner, "must be in " + range_text() + ", got " + v.dump());
+    const std::string range = range_text();
+    fail(owner, "must be " + std::string(range[0] == '[' || range[0] == '(' ? "in " : "") + range + ", got " +
+                    value_text(v));
+  }
+  /// A value as JSON, a non-finite number (from a struct filled in code) as nan or inf.
+  static std::string value_text(const nlohmann::json& v) {
+    if (v.is_number_float() && !std::isfinite(v.get<double>()))
+      return std::isnan(v.get<double>()) ? "nan" : v.get<double>() > 0 ? "inf" : "-inf";
+    return v.dump();
   }
 
   std::string name_;
@@ -267,24 +417,73 @@ class Knob {
   std::string unit_;
   std::string doc_;
   double lo_ = 0.0, hi_ = 0.0;
-  long long ilo_ = 0, ihi_ = 0;
+  long long ilo_ = 0;
+  unsigned long long ihi_ = 0;
+  std::string word_;  // a number knob's other spelling ("auto", "inf"); "" when none
   std::vector<std::string> choices_;
   bool variant_ = false;
   bool crossed_ = false;
+  bool open_below_ = false;
+  bool shorthand_ = false;
+  std::string flag_;
+  std::optional<Front> front_;
   std::vector<nlohmann::json> probes_;
   std::function<nlohmann::json(const P&)> get_;
   std::function<void(P&, const nlohmann::json&)> set_;
+  std::function<bool(const P&)> valid_;                          // integer and choice knobs
+  std::function<std::optional<double>(const P&)> number_member_;  // number knobs; empty = the word
+};
+
+/// A knob as data, whatever struct it belongs to (AnyKnobTable::knob_infos()).
+struct KnobInfo {
+  std::string name;           ///< Spelling in JSON and on --knob.
+  std::string flag;           ///< The shorthand flag ("--max-depth"); "" when it has none.
+  KnobType type;              ///< Kind of value.
+  bool crossed = false;       ///< See Knob::crossed().
+  std::string unit;           ///< Unit ("" when none).
+  std::string doc;            ///< One line: what it does.
+  std::string range;          ///< Accepted values in words (Knob::range_text()).
+  nlohmann::json default_value;
+  std::optional<Front> front; ///< How fronts study it; empty when they do not.
+};
+
+/// A knob table seen without its struct: what the command line, the fronts, the docs and the
+/// tests need from every table alike.
+class AnyKnobTable {
+ public:
+  virtual ~AnyKnobTable() = default;
+  /// Who the knobs belong to; the first word of every error.
+  virtual const std::string& owner() const = 0;
+  /// Knob names in display order.
+  virtual std::vector<std::string> names() const = 0;
+  /// Every knob as data, in display order.
+  virtual std::vector<KnobInfo> knob_infos() const = 0;
+  /// Every knob with its default filled in, from the given ones (an object or null); throws
+  /// ConfigError, one line, on an unknown knob, a wrong type or a value out of range.
+  virtual nlohmann::json complete(const nlohmann::json& given) const = 0;
+  /// See KnobTable::describe().
+  virtual nlohmann::json describe() const = 0;
+  /// See KnobTable::markdown().
+  virtual std::string markdown() const = 0;
+  /// "its knobs: a, b" or "it has no knobs", for error messages.
+  virtual std::string known_text() const = 0;
+  /// Whether the table has a knob called `name`.
+  bool has(std::string_view name) const {
+    for (const std::string& n : names())
+      if (n == name) return true;
+    return false;
+  }
 };
 
 /// Every knob of the parameter struct P, with the name of its owner (a structure, an
 /// integrator) that starts every error message.
 template <class P>
-class KnobTable {
+class KnobTable final : public AnyKnobTable {
  public:
   KnobTable(std::string owner, std::vector<Knob<P>> knobs) : owner_(std::move(owner)), knobs_(std::move(knobs)) {}
 
   /// Who the knobs belong to; the first word of every error.
-  const std::string& owner() const { return owner_; }
+  const std::string& owner() const override { return owner_; }
   /// The knobs, in display order.
   std::span<const Knob<P>> knobs() const { return knobs_; }
   /// The knob called `name`, or null.
@@ -294,7 +493,7 @@ class KnobTable {
     return nullptr;
   }
   /// Knob names in display order.
-  std::vector<std::string> names() const {
+  std::vector<std::string> names() const override {
     std::vector<std::string> out;
     for (const Knob<P>& k : knobs_) out.push_back(k.name());
     return out;
@@ -307,14 +506,22 @@ class KnobTable {
     return j;
   }
 
+  /// Only the knobs of `p` that differ from the defaults (what a scene file needs to say).
+  nlohmann::json changed_json(const P& p) const {
+    nlohmann::json j = nlohmann::json::object();
+    for (const Knob<P>& k : knobs_)
+      if (k.get(p) != k.default_value()) j[k.name()] = k.get(p);
+    return j;
+  }
+
   /// Overwrites the knobs present in `j` (an object, or null for none) and leaves the others.
   /// Unknown keys, wrong types and values out of range throw ConfigError, one line.
   void read(const nlohmann::json& j, P& p) const {
     if (j.is_null()) return;
-    if (!j.is_object()) throw ConfigError(owner_ + ": parameters must be a JSON object, got " + j.dump());
+    if (!j.is_object()) throw ConfigError(owner_ + ": knobs must be a JSON object, got " + j.dump());
     for (const auto& [key, value] : j.items()) {
       const Knob<P>* k = find(key);
-      if (!k) throw ConfigError(owner_ + ": unknown parameter '" + key + "' (" + known_text() + ")");
+      if (!k) throw ConfigError(owner_ + ": unknown knob '" + key + "' (" + known_text() + ")");
       k->set(p, value, owner_);
     }
   }
@@ -328,11 +535,22 @@ class KnobTable {
 
   /// Throws the same ConfigError as from_json would for a struct filled in code.
   void validate(const P& p) const {
-    for (const Knob<P>& k : knobs_) k.check(k.get(p), owner_);
+    for (const Knob<P>& k : knobs_)
+      if (!k.valid(p)) k.check(k.get(p), owner_);
   }
 
-  /// "its knobs: a, b" or "it has none", for error messages.
-  std::string known_text() const {
+  nlohmann::json complete(const nlohmann::json& given) const override { return to_json(from_json(given)); }
+
+  std::vector<KnobInfo> knob_infos() const override {
+    std::vector<KnobInfo> out;
+    for (const Knob<P>& k : knobs_)
+      out.push_back({k.name(), k.is_shorthand() ? k.flag() : "", k.type(), k.is_crossed(), k.unit(),
+                     k.doc(), k.range_text(), k.default_value(), k.accuracy_front()});
+    return out;
+  }
+
+  /// "its knobs: a, b" or "it has no knobs", for error messages.
+  std::string known_text() const override {
     if (knobs_.empty()) return "it has no knobs";
     std::string s;
     for (const Knob<P>& k : knobs_) {
@@ -343,20 +561,21 @@ class KnobTable {
   }
 
   /// The table as data: per knob its name, type, default, range, unit, doc, flags and probes.
-  nlohmann::json describe() const {
+  nlohmann::json describe() const override {
     nlohmann::json out = nlohmann::json::array();
     for (const Knob<P>& k : knobs_) {
       nlohmann::json d = {{"name", k.name()},       {"type", k.type_name()},      {"default", k.default_value()},
                           {"range", k.range_text()}, {"unit", k.unit()},           {"doc", k.doc()},
                           {"variant", k.is_variant()}, {"crossed", k.is_crossed()}, {"probes", k.probe_values()}};
       if (k.type() == KnobType::Choice) d["choices"] = k.choices();
+      if (k.is_shorthand()) d["flag"] = k.flag();
       out.push_back(d);
     }
     return out;
   }
 
   /// The knob reference as a Markdown table (generated into the docs).
-  std::string markdown() const {
+  std::string markdown() const override {
     if (knobs_.empty()) return "No knobs.\n";
     std::string s = "| knob | type | default | range | unit | what it does |\n| --- | --- | --- | --- | --- | --- |\n";
     for (const Knob<P>& k : knobs_) {
@@ -388,16 +607,6 @@ concept HasKnobTable = requires {
   { P::knobs() } -> std::same_as<const KnobTable<P>&>;
 };
 
-/// nlohmann::json conversions of every parameter struct in namespace accel, through its table
-/// (structs in other namespaces call P::knobs().to_json / from_json, or forward to these).
-template <HasKnobTable P>
-void to_json(nlohmann::json& j, const P& p) {
-  j = P::knobs().to_json(p);
-}
-template <HasKnobTable P>
-void from_json(const nlohmann::json& j, P& p) {
-  p = P::knobs().from_json(j);
-}
 
 /// The JSON value of a knob given as text on the command line: a number or true/false when it
 /// reads as one, else the text as a string. The knob table then checks it exactly as it checks
@@ -417,4 +626,12 @@ inline std::pair<std::string, nlohmann::json> parse_knob_assignment(std::string_
   return {std::string(text.substr(0, eq)), knob_value_from_text(text.substr(eq + 1))};
 }
 
-}  // namespace accel
+}  // namespace knobs
+
+/// nlohmann::json conversions of every parameter struct with a knob table, in any namespace:
+/// `nlohmann::json(p)` and `j.get<P>()` go through the table.
+template <class P>
+struct nlohmann::adl_serializer<P, std::enable_if_t<knobs::HasKnobTable<P>>> {
+  static void to_json(nlohmann::json& j, const P& p) { j = P::knobs().to_json(p); }
+  static void from_json(const nlohmann::json& j, P& p) { p = P::knobs().from_json(j); }
+};
