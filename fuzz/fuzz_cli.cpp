@@ -1,15 +1,15 @@
-// Fuzz target: the parsers of command-line flag values (bench/cli_util.h: --resolution,
-// --max-memory, --seed; bench/sweep_definition.h: sweep --resolution, --shard, SCENE items;
-// bench/fronts_flags.h: every flag of `fronts` and `tune --max-error` at once). The input is
+// Fuzz target: the parsers of command-line flag values (cli/cli_util.h: --resolution,
+// --max-memory, --seed; harness/sweep_definition.h: sweep --resolution, --shard, SCENE items;
+// cli/fronts_flags.h: every flag of `fronts` and `tune --max-error` at once). The input is
 // lines; each line is one flag's value, given to every value parser, and line i also fills the
 // fronts flag i modulo 8. Properties: a refusal names its flag first ("--flag: ..." or
 // "SCENE: ..."); an accepted value is in the documented range.
 
 #include "fuzz_check.h"
 
-#include "bench/cli_util.h"
-#include "bench/fronts_flags.h"
-#include "bench/sweep_definition.h"
+#include "cli/cli_util.h"
+#include "cli/fronts_flags.h"
+#include "harness/sweep_definition.h"
 
 #include <nlohmann/json.hpp>
 
@@ -51,22 +51,22 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   for (const std::string& v : lines) {
     expect_named("--resolution", [&] {
       int w = 0, h = 0;
-      bench::parse_resolution(v, "--resolution", w, h);
+      cli::parse_image_size(v, "--resolution", w, h);
       fuzz::require(w >= 1 && h >= 1 && w <= 65536 && h <= 65536, "a resolution out of range is accepted", v);
-      bench::check_image_memory(w, h, 0, "--resolution");  // the default budget: names --resolution
+      cli::check_image_memory(w, h, 0, "--resolution");  // the default budget: names --resolution
     });
-    expect_named("--max-memory", [&] { bench::parse_bytes(v, "--max-memory"); });
-    expect_named("--seed", [&] { bench::parse_seed(v, "--seed"); });
+    expect_named("--max-memory", [&] { cli::parse_bytes(v, "--max-memory"); });
+    expect_named("--seed", [&] { cli::parse_seed(v, "--seed"); });
     expect_named("--validate-resolution", [&] {
-      const auto [w, h] = bench::parse_resolution(v, "--validate-resolution");
+      const auto [w, h] = harness::parse_resolution(v, "--validate-resolution");
       fuzz::require(w >= 1 && h >= 1, "a sweep resolution out of range is accepted", v);
     });
     expect_named("--shard", [&] {
-      const auto [i, n] = bench::parse_shard(v);
+      const auto [i, n] = harness::parse_shard(v);
       fuzz::require(0 <= i && i < n, "a shard out of range is accepted", v);
     });
     expect_named("--values k", [&] {
-      for (const nlohmann::json& value : bench::parse_knob_values_text(v, "--values k")) {
+      for (const nlohmann::json& value : cli::parse_knob_values_text(v, "--values k")) {
         fuzz::require(!value.is_number_float() || std::isfinite(value.get<double>()), "a value is not finite", v);
         // LO:HI:N needs LO > 0, so its integer values are at least 1.
         if (v.find(':') != std::string::npos && value.is_number_integer())
@@ -76,7 +76,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   }
 
   // The fronts flags as one command line: a refusal names the flag it is about.
-  bench::FrontsFlags f;
+  cli::FrontsFlags f;
   f.scenes = {"five"};
   f.knobs = "max_depth";
   for (std::size_t i = 0; i < lines.size(); ++i) {
@@ -93,7 +93,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     }
   }
   try {
-    const bench::FrontsRequest r = bench::request_from_flags(f);
+    const harness::FrontsRequest r = cli::request_from_flags(f);
     fuzz::require(!r.groups.empty() && r.width >= 1 && r.height >= 1, "a fronts request without knobs or size");
   } catch (const std::exception& e) {
     const std::string message = e.what();

@@ -1,8 +1,8 @@
-// bench/bootstrap.h: percentile-bootstrap intervals of medians and of paired ratios (the median
+// harness/bootstrap.h: percentile-bootstrap intervals of medians and of paired ratios (the median
 // of the rounds' ratios). A drift shared by a round cancels in the paired ratio, also where the
 // ratio of the medians keeps it; the same samples give the same interval every time.
 
-#include "bench/bootstrap.h"
+#include "harness/bootstrap.h"
 
 #include <gtest/gtest.h>
 
@@ -14,9 +14,9 @@
 namespace {
 
 TEST(Bootstrap, MedianOf) {
-  EXPECT_DOUBLE_EQ(bench::median_of({3.0, 1.0, 2.0}), 2.0);
-  EXPECT_DOUBLE_EQ(bench::median_of({4.0, 1.0, 3.0, 2.0}), 2.5);
-  EXPECT_THROW(bench::median_of({}), std::invalid_argument);
+  EXPECT_DOUBLE_EQ(harness::median_of({3.0, 1.0, 2.0}), 2.0);
+  EXPECT_DOUBLE_EQ(harness::median_of({4.0, 1.0, 3.0, 2.0}), 2.5);
+  EXPECT_THROW(harness::median_of({}), std::invalid_argument);
 }
 
 TEST(Bootstrap, ADriftSharedByEachRoundCancelsInThePairedRatio) {
@@ -27,17 +27,17 @@ TEST(Bootstrap, ADriftSharedByEachRoundCancelsInThePairedRatio) {
     naive.push_back(1000.0 * drift);
     fast.push_back(10.0 * drift);
   }
-  const bench::Interval paired = bench::paired_ratio_interval(naive, fast);
+  const harness::Interval paired = harness::paired_ratio_interval(naive, fast);
   EXPECT_DOUBLE_EQ(paired.lo, 100.0);
   EXPECT_DOUBLE_EQ(paired.hi, 100.0);
   // Unpaired (naive timed at the start, the structure at the end, as the sweep once did): the
   // same drift now decides the answer, and the interval of the ratio is wide.
   std::vector<double> early(naive.begin(), naive.begin() + 3), late(fast.end() - 3, fast.end());
-  const double ratio = bench::median_of(early) / bench::median_of(late);
+  const double ratio = harness::median_of(early) / harness::median_of(late);
   EXPECT_LT(ratio, 70.0);  // 100 is the truth: drift made it 60
   // The time of one contender alone drifts: its median's interval is wide.
-  const bench::Interval alone = bench::median_interval(fast);
-  EXPECT_GT(alone.relative_width(bench::median_of(fast)), 0.3);
+  const harness::Interval alone = harness::median_interval(fast);
+  EXPECT_GT(alone.relative_width(harness::median_of(fast)), 0.3);
 }
 
 TEST(Bootstrap, IntervalsHoldThePointAndNarrowWithMoreRounds) {
@@ -53,10 +53,10 @@ TEST(Bootstrap, IntervalsHoldThePointAndNarrowWithMoreRounds) {
   };
   const auto [a5, b5] = rounds(5);
   const auto [a45, b45] = rounds(45);
-  const bench::Interval i5 = bench::paired_ratio_interval(a5, b5);
-  const bench::Interval i45 = bench::paired_ratio_interval(a45, b45);
+  const harness::Interval i5 = harness::paired_ratio_interval(a5, b5);
+  const harness::Interval i45 = harness::paired_ratio_interval(a45, b45);
   for (const auto& [i, a, b] : {std::tuple{i5, a5, b5}, std::tuple{i45, a45, b45}}) {
-    const double point = bench::paired_ratio(a, b);
+    const double point = harness::paired_ratio(a, b);
     EXPECT_LE(i.lo, point);
     EXPECT_GE(i.hi, point);
   }
@@ -64,11 +64,11 @@ TEST(Bootstrap, IntervalsHoldThePointAndNarrowWithMoreRounds) {
   EXPECT_GT(i45.lo, 9.0);  // the truth, 10, inside a narrow interval
   EXPECT_LT(i45.hi, 11.0);
   // Deterministic: the same samples give the same interval.
-  const bench::Interval again = bench::paired_ratio_interval(a5, b5);
+  const harness::Interval again = harness::paired_ratio_interval(a5, b5);
   EXPECT_EQ(again.lo, i5.lo);
   EXPECT_EQ(again.hi, i5.hi);
-  EXPECT_THROW(bench::paired_ratio_interval({1.0}, {1.0, 2.0}), std::invalid_argument);
-  EXPECT_THROW(bench::paired_ratio({1.0}, {0.0}), std::invalid_argument);
+  EXPECT_THROW(harness::paired_ratio_interval({1.0}, {1.0, 2.0}), std::invalid_argument);
+  EXPECT_THROW(harness::paired_ratio({1.0}, {0.0}), std::invalid_argument);
 }
 
 // The paper sweep's failure on a VM slowed from outside for seconds at a time: naive (4 s a
@@ -84,9 +84,9 @@ TEST(Bootstrap, APairedRatioIgnoresASlowSpellThatOnlyTheLongRenderCaught) {
     naive.push_back(4000.0 * jitter * slow * (r == 4 ? 1.35 : 1.0));
     fast.push_back(50.0 * jitter * slow);
   }
-  EXPECT_GT(bench::median_of(naive) / bench::median_of(fast), 1.3 * 80.0);
-  EXPECT_DOUBLE_EQ(bench::paired_ratio(naive, fast), 80.0);
-  const bench::Interval i = bench::paired_ratio_interval(naive, fast);
+  EXPECT_GT(harness::median_of(naive) / harness::median_of(fast), 1.3 * 80.0);
+  EXPECT_DOUBLE_EQ(harness::paired_ratio(naive, fast), 80.0);
+  const harness::Interval i = harness::paired_ratio_interval(naive, fast);
   EXPECT_LE(i.lo, 80.0);
   EXPECT_GE(i.hi, 80.0);
 }

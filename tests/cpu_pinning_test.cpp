@@ -1,8 +1,8 @@
-// bench::pin_to_current_cpu leaves the calling thread, and the threads it starts afterwards,
+// harness::pin_to_current_cpu leaves the calling thread, and the threads it starts afterwards,
 // allowed on exactly the one CPU it returns. Run on a thread of its own, so that the test
 // process's main thread stays free.
 
-#include "bench/cpu_pinning.h"
+#include "harness/cpu_pinning.h"
 
 #include <gtest/gtest.h>
 
@@ -16,7 +16,7 @@ TEST(CpuPinning, KeepsTheThreadAndItsChildrenOnTheCpuItReturns) {
   int pinned = -2, allowed = 0, child_cpu = -2;
   bool allowed_is_pinned = false;
   std::thread t([&] {
-    pinned = bench::pin_to_current_cpu();
+    pinned = harness::pin_to_current_cpu();
     cpu_set_t set;
     CPU_ZERO(&set);
     ASSERT_EQ(sched_getaffinity(0, sizeof set, &set), 0);

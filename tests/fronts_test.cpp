@@ -1,13 +1,13 @@
-// Speed/accuracy fronts (bench/fronts.h, bench/accuracy_reference.h, bench/tune_accuracy.h):
+// Speed/accuracy fronts (harness/fronts.h, harness/accuracy_reference.h, harness/tune_accuracy.h):
 // the definition a request expands to, bad input as one line naming what is wrong, a small run
 // end to end (errors, Pareto marking, the reference cache, resume, schema), and the accuracy
 // tuner honouring its budget.
 
-#include "bench/accuracy_reference.h"
-#include "bench/fronts.h"
-#include "bench/fronts_flags.h"
-#include "bench/sweep_results.h"
-#include "bench/tune_accuracy.h"
+#include "harness/accuracy_reference.h"
+#include "harness/fronts.h"
+#include "cli/fronts_flags.h"
+#include "harness/sweep_results.h"
+#include "harness/tune_accuracy.h"
 
 #include "scenes_gen/generators.h"
 #include "tracer/render.h"
@@ -44,10 +44,10 @@ using cli_run::CliRun;
 
 CliRun accelbench(const std::string& args) { return cli_run::run(std::string(ACCELBENCH_CLI) + " " + args); }
 
-bench::FrontsRequest small_request() {
-  bench::FrontsRequest r;
+harness::FrontsRequest small_request() {
+  harness::FrontsRequest r;
   r.name = "t";
-  r.scenes = {bench::parse_scene_item("five")};
+  r.scenes = {harness::parse_scene_item("five")};
   r.groups = {{"max_depth"}, {"spp"}};
   r.values = {{"max_depth", {1, 2, 8}}, {"spp", {1, 4}}};
   r.width = 24;
@@ -61,12 +61,12 @@ bench::FrontsRequest small_request() {
 }
 
 /// Run options writing into dir (`name`.json and `name`.jsonl), references cached in dir/cache, quiet.
-std::pair<bench::RunOptions, bench::ReferenceOptions> quiet_options(const fs::path& dir, const std::string& name) {
-  bench::RunOptions o;
+std::pair<harness::RunOptions, harness::ReferenceOptions> quiet_options(const fs::path& dir, const std::string& name) {
+  harness::RunOptions o;
   o.out_path = (dir / (name + ".json")).string();
   o.jsonl_path = (dir / (name + ".jsonl")).string();
   o.progress = false;
-  bench::ReferenceOptions ro;
+  harness::ReferenceOptions ro;
   ro.cache_dir = (dir / "cache").string();
   ro.validate_width = 8;
   ro.validate_height = 6;
@@ -74,59 +74,59 @@ std::pair<bench::RunOptions, bench::ReferenceOptions> quiet_options(const fs::pa
   return {o, ro};
 }
 
-std::string definition_error(const bench::FrontsRequest& r) {
+std::string definition_error(const harness::FrontsRequest& r) {
   try {
-    bench::fronts_definition(r);
-  } catch (const bench::SweepError& e) {
+    harness::fronts_definition(r);
+  } catch (const harness::SweepError& e) {
     return e.what();
   }
   return "(no error)";
 }
 
 TEST(FrontsDefinition, GroupsBecomeIntegratorKnobGroupsWithTheFixedKnobs) {
-  bench::FrontsRequest r = small_request();
+  harness::FrontsRequest r = small_request();
   r.settings.fixed = {{"min_weight", 0.01}};
-  const bench::SweepDefinition d = bench::fronts_definition(r);
+  const harness::SweepDefinition d = harness::fronts_definition(r);
   ASSERT_EQ(d.integrator_knobs.size(), 2u);
   EXPECT_EQ(d.integrator_knobs[0].at("max_depth").size(), 3u);
   EXPECT_EQ(d.integrator_knobs[0].at("min_weight"), std::vector<json>{0.01});
   EXPECT_EQ(d.integrator_knobs[1].at("spp").size(), 2u);
-  EXPECT_EQ(bench::expand(d).size(), 5u);
+  EXPECT_EQ(harness::expand(d).size(), 5u);
   // The default values of a knob come from its row: max depth 1 to 64, log-spaced.
   r.values.erase("max_depth");
-  const auto depths = bench::fronts_definition(r).integrator_knobs[0].at("max_depth");
+  const auto depths = harness::fronts_definition(r).integrator_knobs[0].at("max_depth");
   EXPECT_EQ(depths.front(), 1);
   EXPECT_EQ(depths.back(), 64);
   // Joint: one group, crossed.
   r = small_request();
   r.groups = {{"max_depth", "spp"}};
-  EXPECT_EQ(bench::expand(bench::fronts_definition(r)).size(), 6u);
+  EXPECT_EQ(harness::expand(harness::fronts_definition(r)).size(), 6u);
 }
 
 TEST(FrontsDefinition, ReferencesDependOnlyOnTheStudiedKnobs) {
-  const bench::ReferenceSpec depth = bench::group_reference("whitted", {"max_depth"}, json::object(), 32, 24);
+  const harness::ReferenceSpec depth = harness::group_reference("whitted", {"max_depth"}, json::object(), 32, 24);
   EXPECT_EQ(depth.params, json({{"max_depth", 64}, {"min_weight", 0}}));
   EXPECT_FALSE(depth.stochastic);
   EXPECT_EQ(depth.check, json({{"max_depth", 48}, {"min_weight", 0}}));
-  EXPECT_EQ(bench::group_reference("whitted", {"min_weight"}, json::object(), 32, 24).params, depth.params);
-  const bench::ReferenceSpec spp = bench::group_reference("whitted", {"spp"}, {{"max_depth", 5}}, 32, 24);
+  EXPECT_EQ(harness::group_reference("whitted", {"min_weight"}, json::object(), 32, 24).params, depth.params);
+  const harness::ReferenceSpec spp = harness::group_reference("whitted", {"spp"}, {{"max_depth", 5}}, 32, 24);
   EXPECT_EQ(spp.params, json({{"max_depth", 5}, {"spp", 1024}}));  // at the front's own depth
   EXPECT_TRUE(spp.stochastic);
   // The photon knobs' ppm reference checks its bias against 1/8 of its passes, also when
   // --reference-set changes them.
-  const bench::ReferenceSpec k = bench::group_reference("photon", {"k"}, json::object(), 32, 24);
+  const harness::ReferenceSpec k = harness::group_reference("photon", {"k"}, json::object(), 32, 24);
   EXPECT_EQ(k.integrator, "ppm");
   EXPECT_TRUE(k.stochastic);
   EXPECT_EQ(k.check, json({{"passes", 32}}));
-  EXPECT_EQ(bench::group_reference("photon", {"k"}, json::object(), 32, 24, {{"passes", 2048}}).check,
+  EXPECT_EQ(harness::group_reference("photon", {"k"}, json::object(), 32, 24, {{"passes", 2048}}).check,
             json({{"passes", 256}}));
-  EXPECT_EQ(bench::group_reference("photon", {"k"}, json::object(), 32, 24, {{"passes", 4}}).check,
+  EXPECT_EQ(harness::group_reference("photon", {"k"}, json::object(), 32, 24, {{"passes", 4}}).check,
             json({{"passes", 1}}));
 }
 
 TEST(FrontsDefinition, BadInputIsOneLineNamingWhatIsWrong) {
   struct Case {
-    std::function<void(bench::FrontsRequest&)> edit;
+    std::function<void(harness::FrontsRequest&)> edit;
     std::string message;
   };
   const std::vector<Case> cases = {
@@ -141,23 +141,23 @@ TEST(FrontsDefinition, BadInputIsOneLineNamingWhatIsWrong) {
       {[](auto& r) { r.structure = "octre"; }, "fronts: /structures/0/name: unknown structure 'octre'"},
   };
   for (const auto& c : cases) {
-    bench::FrontsRequest r = small_request();
+    harness::FrontsRequest r = small_request();
     c.edit(r);
     const std::string got = definition_error(r);
     EXPECT_EQ(got.rfind(c.message, 0), 0u) << "got: " << got;
     EXPECT_EQ(got.find('\n'), std::string::npos);
   }
-  EXPECT_THROW(bench::parse_knob_values_text("", "--values x"), bench::SweepError);
-  EXPECT_THROW(bench::parse_knob_values_text("0:10:4", "--values x"), bench::SweepError);
-  EXPECT_EQ(bench::parse_knob_values_text("1:64:7", "--values x"), (std::vector<json>{1, 2, 4, 8, 16, 32, 64}));
+  EXPECT_THROW(cli::parse_knob_values_text("", "--values x"), harness::SweepError);
+  EXPECT_THROW(cli::parse_knob_values_text("0:10:4", "--values x"), harness::SweepError);
+  EXPECT_EQ(cli::parse_knob_values_text("1:64:7", "--values x"), (std::vector<json>{1, 2, 4, 8, 16, 32, 64}));
   // Integers past 2^53 were rounded by llround past the range of long long (found by fuzz_cli).
   try {
-    bench::parse_knob_values_text("1:99999999999999999999:3", "--values x");
+    cli::parse_knob_values_text("1:99999999999999999999:3", "--values x");
     ADD_FAILURE() << "an integer range past 2^53 was accepted";
-  } catch (const bench::SweepError& e) {
+  } catch (const harness::SweepError& e) {
     EXPECT_STREQ(e.what(), "--values x: an integer range LO:HI:N needs HI <= 2^53, got '99999999999999999999'");
   }
-  EXPECT_EQ(bench::parse_knob_values_text("0.5,2,true,abc", "--values x"),
+  EXPECT_EQ(cli::parse_knob_values_text("0.5,2,true,abc", "--values x"),
             (std::vector<json>{0.5, 2, true, "abc"}));
 }
 
@@ -179,15 +179,15 @@ json hand_made_results() {
                     {"error", {{"rmse", err}, {"rel_mse", err * err}}},
                     {"reference", {{"floor", {{"rmse", 1e-3}, {"rel_mse", 1e-6}}}}}});
   }
-  bench::FrontsSettings s;
+  harness::FrontsSettings s;
   s.groups = {{"max_depth"}, {"spp"}};
-  return {{"sweep", {{"fronts", bench::to_json(s)}}}, {"rows", rows}};
+  return {{"sweep", {{"fronts", harness::to_json(s)}}}, {"rows", rows}};
 }
 
 TEST(AccuracyTune, MaxErrorHonoursTheBudgetAndNothingFasterMeetsIt) {
   const json results = hand_made_results();
   for (double budget : {0.5, 0.45, 0.3, 0.2, 0.1, 0.05, 0.01}) {
-    const bench::AccuracyChoice c = bench::choose_within_error(results, "s", budget);
+    const harness::AccuracyChoice c = harness::choose_within_error(results, "s", budget);
     EXPECT_LE(c.error, budget);
     for (const json& row : results["rows"])
       if (row["render_ms"]["median"].get<double>() < c.render_ms) {
@@ -197,12 +197,12 @@ TEST(AccuracyTune, MaxErrorHonoursTheBudgetAndNothingFasterMeetsIt) {
     for (const json& p : c.pareto) on_front = on_front || p["key"] == c.row["key"];
     EXPECT_TRUE(on_front);
   }
-  EXPECT_EQ(bench::choose_within_error(results, "s", 0.2).row["key"], "k1");
-  EXPECT_EQ(bench::choose_within_error(results, "s", 0.2, "spp").row["key"], "k6");
+  EXPECT_EQ(harness::choose_within_error(results, "s", 0.2).row["key"], "k1");
+  EXPECT_EQ(harness::choose_within_error(results, "s", 0.2, "spp").row["key"], "k6");
   try {
-    bench::choose_within_error(results, "s", 0.001);
+    harness::choose_within_error(results, "s", 0.001);
     ADD_FAILURE() << "no error for an impossible budget";
-  } catch (const bench::SweepError& e) {
+  } catch (const harness::SweepError& e) {
     EXPECT_EQ(std::string(e.what()).rfind("--max-error: no configuration of s has rmse <= 0.001 (smallest: 0.01", 0), 0u)
         << e.what();
   }
@@ -211,20 +211,20 @@ TEST(AccuracyTune, MaxErrorHonoursTheBudgetAndNothingFasterMeetsIt) {
 TEST(AccuracyTune, MaxTimeGivesTheMostAccurateWithinIt) {
   const json results = hand_made_results();
   for (double budget : {10.0, 19.0, 20.0, 39.0, 45.0, 100.0}) {
-    const bench::AccuracyChoice c = bench::choose_within_time(results, "s", budget);
+    const harness::AccuracyChoice c = harness::choose_within_time(results, "s", budget);
     EXPECT_LE(c.render_ms, budget);
     for (const json& row : results["rows"])
       if (row["render_ms"]["median"].get<double>() <= budget) {
         EXPECT_GE(row["error"]["rmse"].get<double>(), c.error);
       }
   }
-  EXPECT_THROW(bench::choose_within_time(results, "s", 5.0), bench::SweepError);
-  EXPECT_THROW(bench::choose_within_time(results, "nope", 50.0), bench::SweepError);
+  EXPECT_THROW(harness::choose_within_time(results, "s", 5.0), harness::SweepError);
+  EXPECT_THROW(harness::choose_within_time(results, "nope", 50.0), harness::SweepError);
 }
 
 TEST(Fronts, AnnotationMarksExactlyTheNonDominatedRows) {
   json results = hand_made_results();
-  bench::annotate_fronts(results);
+  harness::annotate_fronts(results);
   std::vector<bool> on;
   for (const json& row : results["rows"]) on.push_back(row["on_front"].get<bool>());
   // Per group: max_depth {10,.5} {20,.2} {40,.05} on, {25,.3} off; spp {15,.4} {60,.01} on,
@@ -237,13 +237,13 @@ TEST(Fronts, AnnotationMarksExactlyTheNonDominatedRows) {
 
 TEST(Fronts, RunEndToEndWithCachedReferencesAndResume) {
   const fs::path dir = temp_dir("run");
-  const bench::SweepDefinition d = bench::fronts_definition(small_request());
+  const harness::SweepDefinition d = harness::fronts_definition(small_request());
   auto [o, ro] = quiet_options(dir, "t");
-  const bench::FrontsSummary first = bench::run_fronts(d, o, ro);
+  const harness::FrontsSummary first = harness::run_fronts(d, o, ro);
   EXPECT_TRUE(first.sweep.complete);
   EXPECT_EQ(first.references_made, 2);  // one per group
   EXPECT_EQ(first.references_cached, 0);
-  const json results = bench::read_results_file(o.out_path);
+  const json results = harness::read_results_file(o.out_path);
   ASSERT_EQ(results["rows"].size(), 5u);
   for (const json& row : results["rows"]) {
     ASSERT_EQ(row["status"], "ok") << row.dump();
@@ -271,17 +271,17 @@ TEST(Fronts, RunEndToEndWithCachedReferencesAndResume) {
   }
   // The references are cached: a fresh run reads them and finds the same errors.
   fs::remove(o.jsonl_path);
-  const bench::FrontsSummary second = bench::run_fronts(d, o, ro);
+  const harness::FrontsSummary second = harness::run_fronts(d, o, ro);
   EXPECT_EQ(second.references_made, 0);
   EXPECT_EQ(second.references_cached, 2);
-  const json again = bench::read_results_file(o.out_path);
+  const json again = harness::read_results_file(o.out_path);
   for (std::size_t i = 0; i < 5; ++i)
     EXPECT_EQ(again["rows"][i]["error"], results["rows"][i]["error"]) << i;
   // Resume: nothing left to measure.
   o.resume = true;
-  const bench::FrontsSummary resumed = bench::run_fronts(d, o, ro);
+  const harness::FrontsSummary resumed = harness::run_fronts(d, o, ro);
   EXPECT_EQ(resumed.sweep.measured, 0u);
-  EXPECT_EQ(bench::read_results_file(o.out_path)["rows"].size(), 5u);
+  EXPECT_EQ(harness::read_results_file(o.out_path)["rows"].size(), 5u);
   // The results file follows the schema.
   std::ofstream(dir / "validate.py") << "import json, sys\nimport jsonschema\n"
                                         "schema = json.load(open(sys.argv[1]))\n"
@@ -298,14 +298,14 @@ TEST(Fronts, RunEndToEndWithCachedReferencesAndResume) {
 // float's is its (small, non-zero) distance from it; both are on the front (double is slower).
 TEST(Fronts, PrecisionFrontMeasuresFloatAgainstTheDoubleReference) {
   const fs::path dir = temp_dir("precision");
-  bench::FrontsRequest r = small_request();
-  r.scenes = {bench::parse_scene_item("refraction")};
+  harness::FrontsRequest r = small_request();
+  r.scenes = {harness::parse_scene_item("refraction")};
   r.groups = {{"precision"}};
   r.values.clear();
-  const bench::SweepDefinition d = bench::fronts_definition(r);
+  const harness::SweepDefinition d = harness::fronts_definition(r);
   const auto [o, ro] = quiet_options(dir, "p");
-  bench::run_fronts(d, o, ro);
-  const json results = bench::read_results_file(o.out_path);
+  harness::run_fronts(d, o, ro);
+  const json results = harness::read_results_file(o.out_path);
   ASSERT_EQ(results["rows"].size(), 2u);
   std::map<std::string, double> error;
   for (const json& row : results["rows"]) {
@@ -325,15 +325,15 @@ TEST(AccuracyReference, HalvesGiveTheNoiseAndTheCacheKeyFollowsTheScene) {
   scenes_gen::GenOptions g;
   tracer::Scene scene = scenes_gen::generate("five", g);
   const accel::AnyAccel built = accel::make_accel("bvh", json::object(), scene.geometry.primitive_bounds());
-  bench::ReferenceSpec spec;
+  harness::ReferenceSpec spec;
   spec.integrator = "whitted";
   spec.params = {{"spp", 16}};
   spec.stochastic = true;
   spec.width = 24;
   spec.height = 18;
-  bench::ReferenceOptions ro;
+  harness::ReferenceOptions ro;
   ro.progress = false;
-  const bench::AccuracyReference r = bench::obtain_reference(scene, built, spec, ro);
+  const harness::AccuracyReference r = harness::obtain_reference(scene, built, spec, ro);
   EXPECT_GT(r.floor.noise_rmse, 0.0);
   EXPECT_EQ(r.floor.truncation_rmse, 0.0);
   EXPECT_DOUBLE_EQ(r.floor.rmse, r.floor.noise_rmse);
@@ -341,20 +341,20 @@ TEST(AccuracyReference, HalvesGiveTheNoiseAndTheCacheKeyFollowsTheScene) {
   tracer::RenderOptions o;
   o.width = 24;
   o.height = 18;
-  const auto a = tracer::render(scene, built, o, tracer::whitted_integrator(), {{"spp", 16}, {"seed", bench::kReferenceSeedA}});
-  const auto b = tracer::render(scene, built, o, tracer::whitted_integrator(), {{"spp", 16}, {"seed", bench::kReferenceSeedB}});
+  const auto a = tracer::render(scene, built, o, tracer::whitted_integrator(), {{"spp", 16}, {"seed", harness::kReferenceSeedA}});
+  const auto b = tracer::render(scene, built, o, tracer::whitted_integrator(), {{"spp", 16}, {"seed", harness::kReferenceSeedB}});
   EXPECT_DOUBLE_EQ(r.floor.noise_rmse, tracer::image_error(a.image, b.image).rmse / 2);
   const tracer::Image halves[2] = {a.image, b.image};
   EXPECT_EQ(r.image, tracer::mean_image(halves));
   // A 4x finer reference has a smaller floor.
   spec.params["spp"] = 64;
-  EXPECT_LT(bench::obtain_reference(scene, built, spec, ro).floor.noise_rmse, r.floor.noise_rmse);
+  EXPECT_LT(harness::obtain_reference(scene, built, spec, ro).floor.noise_rmse, r.floor.noise_rmse);
   // The key changes with the scene and the spec, not with the order knobs were written in.
-  const std::string key = bench::reference_key(scene, spec);
+  const std::string key = harness::reference_key(scene, spec);
   spec.params = {{"spp", 64}};
-  EXPECT_EQ(bench::reference_key(scene, spec), key);
+  EXPECT_EQ(harness::reference_key(scene, spec), key);
   scene.lights[0].power_w *= 2;
-  EXPECT_NE(bench::reference_key(scene, spec), key);
+  EXPECT_NE(harness::reference_key(scene, spec), key);
 }
 
 TEST(FrontsCli, BadInputGivesOneLine) {

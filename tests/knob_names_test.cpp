@@ -5,7 +5,7 @@
 // knob (a results field, a scene file's own setting) are listed with the reason.
 
 #include "accel/accel.h"
-#include "bench/integrators.h"
+#include "integrators/integrators.h"
 #include "photon/density.h"
 #include "photon/knn.h"
 #include "photon/photon_tree_params.h"
@@ -28,7 +28,7 @@ std::set<std::string> all_knob_names() {
   std::set<std::string> names;
   for (const accel::StructureInfo& s : accel::structures())
     for (const std::string& k : s.knobs) names.insert(k);
-  for (const tracer::Integrator* i : bench::integrators())
+  for (const tracer::Integrator* i : integrators::all())
     for (const std::string& k : i->knob_table().names()) names.insert(k);
   for (const knobs::AnyKnobTable* t : std::initializer_list<const knobs::AnyKnobTable*>{
            &photon::PhotonTreeParams::knobs(), &photon::GatherParams::knobs(), &photon::DensityParams::knobs()})
@@ -52,7 +52,7 @@ std::string code_of(const fs::path& p) {
 std::map<std::string, std::string> sources() {
   std::map<std::string, std::string> out;
   const fs::path root = ACCELBENCH_SOURCE_DIR;
-  for (const char* dir : {"knobs", "accel", "tracer", "photon", "scenes_gen", "input", "bench"})
+  for (const char* dir : {"knobs", "accel", "tracer", "photon", "scenes_gen", "input", "integrators", "harness", "cli", "bench"})
     for (const auto& e : fs::recursive_directory_iterator(root / dir)) {
       const std::string ext = e.path().extension().string();
       if (e.is_regular_file() && (ext == ".h" || ext == ".cpp"))
@@ -69,11 +69,11 @@ const std::map<std::pair<std::string, std::string>, const char*>& not_the_knob()
       {{"photon/photon_integrator.cpp", "max_radius"}, "the radius in effect, in the render statistics"},
       {{"photon/photon_integrator.cpp", "global_photons"}, "the memory-budget error names the knob to lower"},
       {{"photon/photon_integrator.cpp", "caustic_photons"}, "the memory-budget error names the knob to lower"},
-      {{"bench/sweep_machine.cpp", "isa"}, "the machine's ISA in every results file"},
+      {{"harness/sweep_machine.cpp", "isa"}, "the machine's ISA in every results file"},
       {{"bench/validated_main.h", "isa"}, "the build's ISA in the benchmark context"},
-      {{"bench/sweep_definition.cpp", "seed"}, "a generated scene's seed in a sweep file"},
-      {{"bench/tune.cpp", "max_depth"}, "one of the tuner's two axes (TunePoint), each a knob of every tree"},
-      {{"bench/tune.cpp", "max_leaf_size"}, "one of the tuner's two axes (TunePoint), each a knob of every tree"},
+      {{"harness/sweep_definition.cpp", "seed"}, "a generated scene's seed in a sweep file"},
+      {{"harness/tune.cpp", "max_depth"}, "one of the tuner's two axes (TunePoint), each a knob of every tree"},
+      {{"harness/tune.cpp", "max_leaf_size"}, "one of the tuner's two axes (TunePoint), each a knob of every tree"},
       {{"bench/bench_trace.cpp", "max_depth"}, "an axis of the depth x leaf-size benchmark grid"},
       {{"bench/bench_trace.cpp", "max_leaf_size"}, "an axis of the depth x leaf-size benchmark grid"},
   };

@@ -4,8 +4,8 @@
 
 #include "accel/accel.h"
 #include "knobs/knob_table.h"
-#include "bench/sweep_definition.h"
-#include "bench/sweep_measure.h"
+#include "harness/sweep_definition.h"
+#include "harness/sweep_measure.h"
 #include "scenes_gen/generators.h"
 
 #include "cli_run.h"
@@ -151,14 +151,14 @@ std::string sweep_error(const std::string& structure, const json& knobs) {
   json structure_entry = knobs;
   structure_entry["name"] = structure;
   try {
-    bench::parse_sweep_definition({{"scenes", {"five"}}, {"structures", {structure_entry}}});
-  } catch (const bench::SweepError& e) {
+    harness::parse_sweep_definition({{"scenes", {"five"}}, {"structures", {structure_entry}}});
+  } catch (const harness::SweepError& e) {
     return e.what();
   }
   static const tracer::Scene scene = scenes_gen::generate("five", scenes_gen::GenOptions{});
-  const bench::Measurement m =
-      bench::measure(scene, scene.geometry.primitive_bounds(), structure, knobs, bench::MeasureOptions{}, std::nullopt);
-  return m.status == bench::RowStatus::Failed ? "row failed: " + m.reason : "(no error)";
+  const harness::Measurement m =
+      harness::measure(scene, scene.geometry.primitive_bounds(), structure, knobs, harness::MeasureOptions{}, std::nullopt);
+  return m.status == harness::RowStatus::Failed ? "row failed: " + m.reason : "(no error)";
 }
 
 TEST(KnobTable, SameErrorFromJsonSweepFileAndKnobFlag) {

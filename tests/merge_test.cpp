@@ -2,10 +2,10 @@
 // configuration or another sweep's file is refused; a missing shard is reported; shards from
 // different hardware are recorded and flagged.
 
-#include "bench/sweep_definition.h"
-#include "bench/sweep_machine.h"
-#include "bench/sweep_results.h"
-#include "bench/sweep_runner.h"
+#include "harness/sweep_definition.h"
+#include "harness/sweep_machine.h"
+#include "harness/sweep_results.h"
+#include "harness/sweep_runner.h"
 
 #include <gtest/gtest.h>
 
@@ -24,8 +24,8 @@ namespace {
 using nlohmann::json;
 namespace fs = std::filesystem;
 
-bench::SweepDefinition tiny() {
-  return bench::parse_sweep_definition(
+harness::SweepDefinition tiny() {
+  return harness::parse_sweep_definition(
       {{"name", "tiny-merge"},
        {"scenes", {"random:25", "grid:27"}},
        {"structures", {"naive", "octree", {{"name", "kdtree"}, {"split", {"midpoint", "sah"}}}, "bvh"}},
@@ -50,8 +50,8 @@ class MergeTest : public ::testing::Test {
   }
   void TearDown() override { fs::remove_all(dir_); }
 
-  json run(const bench::SweepDefinition& d, int index, int count) {
-    bench::RunOptions o;
+  json run(const harness::SweepDefinition& d, int index, int count) {
+    harness::RunOptions o;
     // Appended piecewise: GCC 12 warns falsely (-Wrestrict) on "literal" + std::string&&.
     std::string name = std::to_string(index);
     name += "of";
@@ -62,8 +62,8 @@ class MergeTest : public ::testing::Test {
     o.shard_index = index;
     o.shard_count = count;
     o.progress = false;
-    bench::run_sweep(d, o);
-    return bench::read_results_file(o.out_path);
+    harness::run_sweep(d, o);
+    return harness::read_results_file(o.out_path);
   }
 
   fs::path dir_;
@@ -71,7 +71,7 @@ class MergeTest : public ::testing::Test {
 
 TEST_F(MergeTest, ShardsMergeIntoExactlyTheFullSweep) {
   const auto d = tiny();
-  const auto all = bench::expand(d);
+  const auto all = harness::expand(d);
   std::set<std::string> all_keys;
   for (const auto& c : all) all_keys.insert(c.key);
 
@@ -83,7 +83,7 @@ TEST_F(MergeTest, ShardsMergeIntoExactlyTheFullSweep) {
     rows += shards.back().second["rows"].size();
   }
   EXPECT_EQ(rows, all.size());
-  const json merged = bench::merge_results(shards);
+  const json merged = harness::merge_results(shards);
   EXPECT_EQ(keys_of(merged), all_keys);
   EXPECT_EQ(merged["rows"].size(), all.size());
   EXPECT_TRUE(merged["complete"].get<bool>());
@@ -96,18 +96,18 @@ TEST_F(MergeTest, ShardsMergeIntoExactlyTheFullSweep) {
   }
 
   // Merging the shards' merge with nothing else is the identity on rows.
-  EXPECT_EQ(keys_of(bench::merge_results({{"merged", merged}})), all_keys);
+  EXPECT_EQ(keys_of(harness::merge_results({{"merged", merged}})), all_keys);
 
   // A missing shard is reported, not hidden.
-  const json partial = bench::merge_results({shards[0], shards[2]});
+  const json partial = harness::merge_results({shards[0], shards[2]});
   EXPECT_FALSE(partial["complete"].get<bool>());
   EXPECT_EQ(partial["missing"].size(), shards[1].second["rows"].size());
 
   // The same configuration twice is refused, naming both files.
   try {
-    bench::merge_results({shards[0], shards[1], {"again", shards[0].second}});
+    harness::merge_results({shards[0], shards[1], {"again", shards[0].second}});
     ADD_FAILURE() << "duplicate accepted";
-  } catch (const bench::SweepError& e) {
+  } catch (const harness::SweepError& e) {
     EXPECT_NE(std::string(e.what()).find("is also in shard0"), std::string::npos) << e.what();
   }
 }
@@ -117,9 +117,9 @@ TEST_F(MergeTest, RefusesShardsOfAnotherSweep) {
   other.repetitions = 2;
   const json a = run(tiny(), 0, 2), b = run(other, 1, 2);
   try {
-    bench::merge_results({{"a.json", a}, {"b.json", b}});
+    harness::merge_results({{"a.json", a}, {"b.json", b}});
     ADD_FAILURE() << "different definitions accepted";
-  } catch (const bench::SweepError& e) {
+  } catch (const harness::SweepError& e) {
     EXPECT_EQ(std::string(e.what()), "b.json: /sweep: differs from a.json's sweep definition");
   }
 }
@@ -127,15 +127,15 @@ TEST_F(MergeTest, RefusesShardsOfAnotherSweep) {
 TEST_F(MergeTest, RecordsAndWarnsWhenShardsRanOnDifferentHardware) {
   const auto d = tiny();
   const json a = run(d, 0, 2), b = run(d, 1, 2);
-  const json merged = bench::merge_results({{"a", a}, {"b", b}});
+  const json merged = harness::merge_results({{"a", a}, {"b", b}});
   EXPECT_FALSE(merged.contains("mixed_hardware"));
   EXPECT_FALSE(merged.contains("machines"));
-  EXPECT_EQ(merged["speedup_basis"], bench::kSpeedupBasis);
+  EXPECT_EQ(merged["speedup_basis"], harness::kSpeedupBasis);
 
   // Another node of the same hardware: both machines are recorded, nothing is mixed.
   json other_node = b;
   other_node["machine"]["hostname"] = "node-b";
-  json m = bench::merge_results({{"a", a}, {"b", other_node}});
+  json m = harness::merge_results({{"a", a}, {"b", other_node}});
   ASSERT_TRUE(m.contains("machines"));
   EXPECT_EQ(m["machines"].size(), 2u);
   EXPECT_FALSE(m.contains("mixed_hardware"));
@@ -143,7 +143,7 @@ TEST_F(MergeTest, RecordsAndWarnsWhenShardsRanOnDifferentHardware) {
   // Another core count, then another CPU model: flagged, with both values.
   json other_cores = other_node;
   other_cores["machine"]["cores"] = a["machine"]["cores"].get<int>() + 62;
-  m = bench::merge_results({{"a", a}, {"b", other_cores}});
+  m = harness::merge_results({{"a", a}, {"b", other_cores}});
   ASSERT_TRUE(m.contains("mixed_hardware"));
   EXPECT_EQ(m["mixed_hardware"]["cores"],
             json::array({a["machine"]["cores"], other_cores["machine"]["cores"]}));
@@ -151,7 +151,7 @@ TEST_F(MergeTest, RecordsAndWarnsWhenShardsRanOnDifferentHardware) {
 
   json other_cpu = other_node;
   other_cpu["machine"]["cpu_model"] = "Other CPU @ 1.0GHz";
-  m = bench::merge_results({{"a", a}, {"b", other_cpu}});
+  m = harness::merge_results({{"a", a}, {"b", other_cpu}});
   ASSERT_TRUE(m.contains("mixed_hardware"));
   EXPECT_EQ(m["mixed_hardware"]["cpu_models"],
             json::array({a["machine"]["cpu_model"], "Other CPU @ 1.0GHz"}));
@@ -163,7 +163,7 @@ TEST_F(MergeTest, RecordsAndWarnsWhenShardsRanOnDifferentHardware) {
   // A shard that was itself resumed on other hardware carries both machines; merge sees them.
   json resumed = b;
   resumed["machines"] = json::array({b["machine"], other_cpu["machine"]});
-  m = bench::merge_results({{"a", a}, {"b", resumed}});
+  m = harness::merge_results({{"a", a}, {"b", resumed}});
   EXPECT_TRUE(m.contains("mixed_hardware"));
 
   // The command line says so on stderr and exits 0 (the merge itself is complete).
@@ -178,7 +178,7 @@ TEST_F(MergeTest, RecordsAndWarnsWhenShardsRanOnDifferentHardware) {
   EXPECT_NE(err.find("merge: warning: rows were measured on different hardware"), std::string::npos)
       << err;
   EXPECT_NE(err.find("Other CPU @ 1.0GHz"), std::string::npos) << err;
-  EXPECT_TRUE(bench::read_results_file((dir_ / "m.json").string()).contains("mixed_hardware"));
+  EXPECT_TRUE(harness::read_results_file((dir_ / "m.json").string()).contains("mixed_hardware"));
 }
 
 }  // namespace

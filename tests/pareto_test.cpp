@@ -1,7 +1,7 @@
-// Pareto front marking (bench/pareto.h): no dominated point on the front, no non-dominated point
+// Pareto front marking (harness/pareto.h): no dominated point on the front, no non-dominated point
 // missed, on hand-made data and against brute force on random data.
 
-#include "bench/pareto.h"
+#include "harness/pareto.h"
 
 #include <gtest/gtest.h>
 
@@ -12,7 +12,7 @@
 
 namespace {
 
-using bench::TimeError;
+using harness::TimeError;
 
 std::vector<bool> brute_force(const std::vector<TimeError>& p) {
   std::vector<bool> on(p.size());
@@ -20,7 +20,7 @@ std::vector<bool> brute_force(const std::vector<TimeError>& p) {
     const bool ok = std::isfinite(p[i].time) && std::isfinite(p[i].error) && p[i].time >= 0 && p[i].error >= 0;
     on[i] = ok;
     for (std::size_t j = 0; j < p.size() && on[i]; ++j)
-      if (bench::dominates(p[j], p[i])) on[i] = false;
+      if (harness::dominates(p[j], p[i])) on[i] = false;
   }
   return on;
 }
@@ -41,9 +41,9 @@ TEST(Pareto, HandMade) {
       {-1, 0.0},   // 10 negative time: unusable
   };
   const std::vector<bool> want = {true, true, false, false, true, true, false, false, false, true, false};
-  EXPECT_EQ(bench::pareto_front(p), want);
-  EXPECT_EQ(bench::pareto_indices(p), (std::vector<std::size_t>{0, 9, 1, 4, 5}));
-  EXPECT_TRUE(bench::pareto_front({}).empty());
+  EXPECT_EQ(harness::pareto_front(p), want);
+  EXPECT_EQ(harness::pareto_indices(p), (std::vector<std::size_t>{0, 9, 1, 4, 5}));
+  EXPECT_TRUE(harness::pareto_front({}).empty());
 }
 
 TEST(Pareto, MatchesBruteForceOnRandomPoints) {
@@ -52,14 +52,14 @@ TEST(Pareto, MatchesBruteForceOnRandomPoints) {
   for (int trial = 0; trial < 200; ++trial) {
     std::vector<TimeError> p(std::size_t(1 + trial % 40));
     for (auto& q : p) q = {double(coarse(rng)), double(coarse(rng)) * 0.1};
-    const std::vector<bool> on = bench::pareto_front(p);
+    const std::vector<bool> on = harness::pareto_front(p);
     ASSERT_EQ(on, brute_force(p)) << "trial " << trial;
     // The defining properties, directly: nothing on the front is dominated, and everything off
     // the front is dominated by a front point.
     for (std::size_t i = 0; i < p.size(); ++i) {
       bool dominated = false, by_front = false;
       for (std::size_t j = 0; j < p.size(); ++j)
-        if (bench::dominates(p[j], p[i])) {
+        if (harness::dominates(p[j], p[i])) {
           dominated = true;
           by_front = by_front || on[j];
         }

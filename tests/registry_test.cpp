@@ -3,8 +3,8 @@
 // the plot script's registry file and the knob reference in the docs) holds every entry.
 
 #include "accel/accel.h"
-#include "bench/integrators.h"
-#include "bench/sweep_definition.h"
+#include "integrators/integrators.h"
+#include "harness/sweep_definition.h"
 #include "scenes_gen/generators.h"
 
 #include "cli_run.h"
@@ -70,12 +70,12 @@ std::set<std::string> repeated(const std::vector<std::string>& names) {
 
 TEST(Registry, NamesAreUniqueInEveryTable) {
   EXPECT_EQ(repeated(registry_names()), std::set<std::string>{});
-  std::vector<std::string> integrators;
-  for (const tracer::Integrator* i : bench::integrators()) {
-    integrators.push_back(std::string(i->name));
+  std::vector<std::string> integrator_names;
+  for (const tracer::Integrator* i : integrators::all()) {
+    integrator_names.push_back(std::string(i->name));
     EXPECT_EQ(repeated(i->knob_table().names()), std::set<std::string>{}) << i->name;
   }
-  EXPECT_EQ(repeated(integrators), std::set<std::string>{});
+  EXPECT_EQ(repeated(integrator_names), std::set<std::string>{});
   EXPECT_EQ(repeated(scenes_gen::generator_names()), std::set<std::string>{});
   for (const accel::StructureInfo& s : accel::structures()) EXPECT_EQ(repeated(s.knobs), std::set<std::string>{}) << s.name;
 }
@@ -88,20 +88,20 @@ TEST(Registry, EveryIntegratorReachesTheCommandLineSweepsAndDocs) {
   ProcessRun list = run(std::string(ACCELBENCH_CLI) + " integrators");
   list.output = "\n" + list.output;
   ASSERT_EQ(list.status, 0) << list.output;
-  ASSERT_GE(bench::integrators().size(), 4u);
-  for (const tracer::Integrator* i : bench::integrators()) {
+  ASSERT_GE(integrators::all().size(), 4u);
+  for (const tracer::Integrator* i : integrators::all()) {
     const std::string n(i->name);
     EXPECT_NE(help.output.find(n), std::string::npos) << n << " missing from render --help";
     EXPECT_NE(list.output.find("\n" + n + " "), std::string::npos) << n << " missing from `integrators`";
-    EXPECT_NO_THROW(bench::parse_sweep_definition(
+    EXPECT_NO_THROW(harness::parse_sweep_definition(
         {{"scenes", {"five"}}, {"structures", {{{"name", "naive"}}}}, {"integrator", n}})) << n;
     const json defaults = i->params(json::object());
     EXPECT_EQ(i->params(defaults), defaults) << n;
     EXPECT_EQ(defaults.size(), i->knob_table().names().size()) << n;
   }
   const ProcessRun md = run(std::string(ACCELBENCH_CLI) + " integrators --markdown");
-  EXPECT_EQ(md.output, bench::integrators_markdown());
-  EXPECT_NE(read(ACCELBENCH_SOURCE_DIR "/docs/tracer.md").find(bench::integrators_markdown()), std::string::npos)
+  EXPECT_EQ(md.output, integrators::markdown());
+  EXPECT_NE(read(ACCELBENCH_SOURCE_DIR "/docs/tracer.md").find(integrators::markdown()), std::string::npos)
       << "docs/tracer.md: paste the output of `accelbench integrators --markdown` under its knob reference";
 }
 
@@ -118,10 +118,10 @@ TEST(Registry, CommandLineListsEveryStructure) {
 
 TEST(Registry, SweepsKnowEveryStructureAndItsKnobs) {
   for (const accel::StructureInfo& s : accel::structures()) {
-    EXPECT_EQ(bench::structure_knobs(s.name), s.knobs) << s.name;
+    EXPECT_EQ(harness::structure_knobs(s.name), s.knobs) << s.name;
     json entry = {{"name", s.name}};
     for (const json& k : s.knob_table) entry[k.at("name").get<std::string>()] = k.at("default");
-    EXPECT_NO_THROW(bench::parse_sweep_definition({{"scenes", {"five"}}, {"structures", {entry}}})) << s.name;
+    EXPECT_NO_THROW(harness::parse_sweep_definition({{"scenes", {"five"}}, {"structures", {entry}}})) << s.name;
   }
 }
 

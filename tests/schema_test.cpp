@@ -1,9 +1,9 @@
 // The results file validates against results/schema/results.schema.json (checked by Python's
 // jsonschema, draft 2020-12), and the schema rejects files that break its rules.
 
-#include "bench/sweep_definition.h"
-#include "bench/sweep_results.h"
-#include "bench/sweep_runner.h"
+#include "harness/sweep_definition.h"
+#include "harness/sweep_results.h"
+#include "harness/sweep_runner.h"
 
 #include <gtest/gtest.h>
 
@@ -52,7 +52,7 @@ class SchemaTest : public ::testing::Test {
 };
 
 TEST_F(SchemaTest, TinySweepRowsValidateAndBrokenOnesDoNot) {
-  const auto d = bench::parse_sweep_definition(
+  const auto d = harness::parse_sweep_definition(
       {{"name", "tiny-schema"},
        {"scenes", {"random:40", "five"}},
        {"structures",
@@ -60,13 +60,13 @@ TEST_F(SchemaTest, TinySweepRowsValidateAndBrokenOnesDoNot) {
        {"resolution", "16x12"},
        {"repetitions", 2},
        {"warmup", 1}});
-  bench::RunOptions o;
+  harness::RunOptions o;
   o.out_path = (dir_ / "tiny.json").string();
   o.jsonl_path = (dir_ / "tiny.jsonl").string();
   o.progress = false;
-  const auto summary = bench::run_sweep(d, o);
+  const auto summary = harness::run_sweep(d, o);
   EXPECT_TRUE(summary.complete);
-  const json doc = bench::read_results_file(o.out_path);
+  const json doc = harness::read_results_file(o.out_path);
 
   std::size_t ok = 0, failed = 0;
   for (const auto& r : doc["rows"]) {

@@ -1,11 +1,11 @@
-// The stability suite (bench/stability.h): its variants move and scale a scene as a user would,
+// The stability suite (harness/stability.h): its variants move and scale a scene as a user would,
 // and `accelbench stability` runs as a user runs it, its JSON checked against
 // results/schema/stability.schema.json (Python's jsonschema, draft 2020-12).
 
 #include "cli_run.h"
 
-#include "bench/stability.h"
-#include "bench/stability_variants.h"
+#include "harness/stability.h"
+#include "harness/stability_variants.h"
 #include "scenes_gen/generators.h"
 
 #include <gtest/gtest.h>
@@ -135,21 +135,21 @@ TEST_F(Stability, BadInputIsOneLineAndAFailingExit) {
 
 TEST(StabilityVariants, MoveAndScaleEverythingTogether) {
   const tracer::Scene five = scenes_gen::generate("five", {});
-  const auto variants = bench::select_variants("translate_diag_1e5,scale_1e-6", "--variants");
+  const auto variants = harness::select_variants("translate_diag_1e5,scale_1e-6", "--variants");
   ASSERT_EQ(variants.size(), 3u);  // base first
-  const tracer::Scene moved = bench::make_variant(five, variants[1]);
+  const tracer::Scene moved = harness::make_variant(five, variants[1]);
   EXPECT_NEAR(double(moved.camera.position.x), double(five.camera.position.x) + 1e5, 0.01);
   EXPECT_NEAR(double(moved.camera.position.y), double(five.camera.position.y) - 1e5, 0.01);
   EXPECT_NEAR(double(moved.lights[0].position.z), double(five.lights[0].position.z) + 1e5, 0.01);
   EXPECT_NEAR(double(moved.geometry.spheres[0].center.x),
               double(five.geometry.spheres[0].center.x) + 1e5, 0.01);
-  const tracer::Scene small = bench::make_variant(five, variants[2]);
+  const tracer::Scene small = harness::make_variant(five, variants[2]);
   EXPECT_NEAR(double(small.geometry.spheres[0].radius), 1e-6 * double(five.geometry.spheres[0].radius),
               1e-12);
   // "quick" and "all" expand; an unknown name is refused naming the flag.
-  EXPECT_EQ(bench::select_variants("quick", "--v").size(), 6u);
-  EXPECT_EQ(bench::select_variants("all", "--v").size(), 34u);  // 1 + 6 + 6 + 12 + 6 + 3
-  EXPECT_THROW(bench::select_variants("scale_1e9", "--v"), std::runtime_error);
+  EXPECT_EQ(harness::select_variants("quick", "--v").size(), 6u);
+  EXPECT_EQ(harness::select_variants("all", "--v").size(), 34u);  // 1 + 6 + 6 + 12 + 6 + 3
+  EXPECT_THROW(harness::select_variants("scale_1e9", "--v"), std::runtime_error);
 }
 
 }  // namespace

@@ -1,12 +1,12 @@
 // The sweep harness: definition parsing and expansion, timing statistics, sharding, the JSON
 // Lines file, and resuming after a real kill of the `accelbench sweep` process.
 
-#include "bench/bootstrap.h"
-#include "bench/sweep_definition.h"
-#include "bench/sweep_jsonl.h"
-#include "bench/sweep_machine.h"
-#include "bench/sweep_runner.h"
-#include "bench/sweep_stats.h"
+#include "harness/bootstrap.h"
+#include "harness/sweep_definition.h"
+#include "harness/sweep_jsonl.h"
+#include "harness/sweep_machine.h"
+#include "harness/sweep_runner.h"
+#include "harness/sweep_stats.h"
 
 #include "cli_run.h"
 
@@ -29,13 +29,13 @@
 
 namespace {
 
-using bench::SweepError;
+using harness::SweepError;
 using nlohmann::json;
 namespace fs = std::filesystem;
 
 std::string parse_error(const json& j) {
   try {
-    bench::parse_sweep_definition(j);
+    harness::parse_sweep_definition(j);
   } catch (const SweepError& e) {
     return e.what();
   }
@@ -87,21 +87,21 @@ TEST(SweepDefinition, RoundTripsThroughItsNormalForm) {
                   {"structures", {"naive", {{"name", "kdtree"}, {"split", "sah"}, {"max_leaf_size", {1, 2}}}}},
                   {"knobs", {{"max_depth", {4, 8}}}},
                   {"resolution", "32x24"}};
-  const auto d = bench::parse_sweep_definition(j);
+  const auto d = harness::parse_sweep_definition(j);
   EXPECT_EQ(d.scenes[1].name, "random-50");
   EXPECT_EQ(d.scenes[1].count, 50);
   EXPECT_FALSE(d.scenes[0].count.has_value());
   EXPECT_EQ(d.scenes[2].name, "teapot");
   EXPECT_EQ(d.width, 32);
-  const json normal = bench::to_json(d);
-  EXPECT_EQ(bench::to_json(bench::parse_sweep_definition(normal)), normal);
+  const json normal = harness::to_json(d);
+  EXPECT_EQ(harness::to_json(harness::parse_sweep_definition(normal)), normal);
 }
 
 TEST(SweepDefinition, ExpandsKnobsOnlyForStructuresThatHaveThem) {
   const json j = {{"scenes", {"five", "random:20"}},
                   {"structures", {"naive", "octree", {{"name", "kdtree"}, {"max_depth", {3}}}}},
                   {"knobs", {{"max_depth", {4, 8, 12}}, {"max_leaf_size", {1, 2}}}}};
-  const auto configs = bench::expand(bench::parse_sweep_definition(j));
+  const auto configs = harness::expand(harness::parse_sweep_definition(j));
   std::map<std::string, int> per_structure;
   std::set<std::string> keys;
   for (std::size_t i = 0; i < configs.size(); ++i) {
@@ -127,10 +127,10 @@ TEST(SweepDefinition, ExpandsKnobsOnlyForStructuresThatHaveThem) {
 }
 
 TEST(SweepDefinition, KeyIsCanonical) {
-  EXPECT_EQ(bench::config_key("s", "kdtree", json{{"max_leaf_size", 2}, {"max_depth", 8}}),
-            bench::config_key("s", "kdtree", json{{"max_depth", 8}, {"max_leaf_size", 2}}));
-  EXPECT_NE(bench::config_key("s", "kdtree", json{{"max_depth", 8}}),
-            bench::config_key("s", "octree", json{{"max_depth", 8}}));
+  EXPECT_EQ(harness::config_key("s", "kdtree", json{{"max_leaf_size", 2}, {"max_depth", 8}}),
+            harness::config_key("s", "kdtree", json{{"max_depth", 8}, {"max_leaf_size", 2}}));
+  EXPECT_NE(harness::config_key("s", "kdtree", json{{"max_depth", 8}}),
+            harness::config_key("s", "octree", json{{"max_depth", 8}}));
 }
 
 TEST(SweepDefinition, IntegratorKnobGroupsAreCrossedWithinAndJoinedAcross) {
@@ -138,25 +138,25 @@ TEST(SweepDefinition, IntegratorKnobGroupsAreCrossedWithinAndJoinedAcross) {
   json j = {{"scenes", {"five"}},
             {"structures", {"naive", {{"name", "kdtree"}, {"max_leaf_size", {1, 2}}}}},
             {"integrator_knobs", {{"max_depth", {1, 2, 3}}, {"spp", {1, 4}}}}};
-  auto d = bench::parse_sweep_definition(j);
+  auto d = harness::parse_sweep_definition(j);
   ASSERT_EQ(d.integrator_knobs.size(), 1u);
-  EXPECT_EQ(bench::expand(d).size(), (1u + 2u) * 6u);
+  EXPECT_EQ(harness::expand(d).size(), (1u + 2u) * 6u);
   j["integrator_knobs"] = json::array({{{"max_depth", {1, 2, 3}}}, {{"spp", {1, 4}}}, {{"spp", {4}}}});
-  d = bench::parse_sweep_definition(j);
-  const auto configs = bench::expand(d);
+  d = harness::parse_sweep_definition(j);
+  const auto configs = harness::expand(d);
   EXPECT_EQ(configs.size(), (1u + 2u) * 5u);
   std::set<std::string> keys;
   for (const auto& c : configs) {
     keys.insert(c.key);
     EXPECT_EQ(c.integrator_params.size(), 1u);
-    EXPECT_EQ(c.key, bench::config_key("five", c.structure, c.params, c.integrator_params));
+    EXPECT_EQ(c.key, harness::config_key("five", c.structure, c.params, c.integrator_params));
   }
   EXPECT_EQ(keys.size(), configs.size());
-  const json normal = bench::to_json(d);
-  EXPECT_EQ(bench::to_json(bench::parse_sweep_definition(normal)), normal);
+  const json normal = harness::to_json(d);
+  EXPECT_EQ(harness::to_json(harness::parse_sweep_definition(normal)), normal);
   // Without integrator knobs the keys are what they always were.
-  EXPECT_EQ(bench::config_key("s", "bvh", json::object(), json::object()), "s|bvh|{}");
-  EXPECT_EQ(bench::config_key("s", "bvh", json::object(), {{"spp", 4}}), "s|bvh|{}|{\"spp\":4}");
+  EXPECT_EQ(harness::config_key("s", "bvh", json::object(), json::object()), "s|bvh|{}");
+  EXPECT_EQ(harness::config_key("s", "bvh", json::object(), {{"spp", 4}}), "s|bvh|{}|{\"spp\":4}");
 
   for (const auto& [patch, message] : std::vector<std::pair<json, std::string>>{
            {{{"integrator_knobs", {{"depth", {1}}}}}, "/integrator_knobs/depth: integrator whitted has no knob 'depth'"},
@@ -176,24 +176,24 @@ TEST(SweepDefinition, ShardsAreDisjointAndCoverTheSweep) {
   const json j = {{"scenes", {"five", "random:20", "grid:8"}},
                   {"structures", {"naive", "octree", "kdtree"}},
                   {"knobs", {{"max_depth", {2, 4, 6}}, {"max_leaf_size", {1, 3}}}}};
-  const auto all = bench::expand(bench::parse_sweep_definition(j));
+  const auto all = harness::expand(harness::parse_sweep_definition(j));
   for (int n : {1, 2, 3, 7, int(all.size()) + 2}) {
     std::multiset<std::string> seen;
     for (int i = 0; i < n; ++i) {
-      const auto part = bench::shard(all, i, n);
-      EXPECT_EQ(bench::shard(all, i, n).size(), part.size());  // deterministic
+      const auto part = harness::shard(all, i, n);
+      EXPECT_EQ(harness::shard(all, i, n).size(), part.size());  // deterministic
       for (const auto& c : part) seen.insert(c.key);
     }
     EXPECT_EQ(seen.size(), all.size()) << n << " shards";
     for (const auto& c : all) EXPECT_EQ(seen.count(c.key), 1u);
   }
-  EXPECT_THROW(bench::parse_shard("3/3"), SweepError);
-  EXPECT_THROW(bench::parse_shard("1"), SweepError);
-  EXPECT_EQ(bench::parse_shard("2/5"), std::make_pair(2, 5));
+  EXPECT_THROW(harness::parse_shard("3/3"), SweepError);
+  EXPECT_THROW(harness::parse_shard("1"), SweepError);
+  EXPECT_EQ(harness::parse_shard("2/5"), std::make_pair(2, 5));
 }
 
 TEST(SweepStats, MedianQuartilesAndSpread) {
-  const auto s = bench::summarize({5.0, 1.0, 4.0, 2.0, 3.0});
+  const auto s = harness::summarize({5.0, 1.0, 4.0, 2.0, 3.0});
   EXPECT_DOUBLE_EQ(s.median, 3.0);
   EXPECT_DOUBLE_EQ(s.min, 1.0);
   EXPECT_DOUBLE_EQ(s.max, 5.0);
@@ -201,10 +201,10 @@ TEST(SweepStats, MedianQuartilesAndSpread) {
   EXPECT_DOUBLE_EQ(s.q3, 4.0);
   EXPECT_DOUBLE_EQ(s.iqr(), 2.0);
   EXPECT_EQ(s.samples, (std::vector<double>{5.0, 1.0, 4.0, 2.0, 3.0}));  // measurement order kept
-  const auto even = bench::summarize({4.0, 1.0, 3.0, 2.0});
+  const auto even = harness::summarize({4.0, 1.0, 3.0, 2.0});
   EXPECT_DOUBLE_EQ(even.median, 2.5);
   EXPECT_DOUBLE_EQ(even.q1, 1.75);
-  const auto one = bench::summarize({7.0});
+  const auto one = harness::summarize({7.0});
   EXPECT_DOUBLE_EQ(one.median, 7.0);
   EXPECT_DOUBLE_EQ(one.iqr(), 0.0);
 }
@@ -220,7 +220,7 @@ TEST(SweepJsonl, KeepsCompleteLinesAndDropsATornOne) {
   const fs::path dir = temp_dir("jsonl");
   const std::string path = (dir / "rows.jsonl").string();
   {
-    bench::JsonlWriter w(path, true);
+    harness::JsonlWriter w(path, true);
     w.append({{"kind", "row"}, {"key", "a"}});
     w.append({{"kind", "row"}, {"key", "b"}});
   }
@@ -229,29 +229,29 @@ TEST(SweepJsonl, KeepsCompleteLinesAndDropsATornOne) {
     std::ofstream out(path, std::ios::app);
     out << "{\"kind\":\"row\",\"key\":\"c";  // a write cut by a kill
   }
-  const auto c = bench::read_jsonl(path);
+  const auto c = harness::read_jsonl(path);
   ASSERT_EQ(c.records.size(), 2u);
   EXPECT_EQ(c.records[1]["key"], "b");
   EXPECT_TRUE(c.torn_tail);
   EXPECT_EQ(c.lines, (std::vector<std::size_t>{1, 2}));
   EXPECT_EQ(c.valid_bytes, whole);
-  bench::truncate_file(path, c.valid_bytes);
+  harness::truncate_file(path, c.valid_bytes);
   {
-    bench::JsonlWriter w(path, false);
+    harness::JsonlWriter w(path, false);
     w.append({{"kind", "row"}, {"key", "c"}});
   }
-  const auto after = bench::read_jsonl(path);
+  const auto after = harness::read_jsonl(path);
   EXPECT_EQ(after.records.size(), 3u);
   EXPECT_FALSE(after.torn_tail);
-  EXPECT_TRUE(bench::read_jsonl((dir / "absent.jsonl").string()).records.empty());
+  EXPECT_TRUE(harness::read_jsonl((dir / "absent.jsonl").string()).records.empty());
   // A damaged line that is not the last is corruption, not a kill: refused with its line number.
   try {
-    bench::parse_jsonl("{\"kind\":\"row\"}\n{\"kind\":\"ro\n{\"kind\":\"row\"}\n", "x.jsonl");
+    harness::parse_jsonl("{\"kind\":\"row\"}\n{\"kind\":\"ro\n{\"kind\":\"row\"}\n", "x.jsonl");
     ADD_FAILURE() << "a damaged middle line was accepted";
   } catch (const SweepError& e) {
     EXPECT_EQ(std::string(e.what()).rfind("x.jsonl:2: /kind: invalid JSON: ", 0), 0u) << e.what();
   }
-  EXPECT_THROW(bench::parse_jsonl("[1]\n", "x.jsonl"), SweepError);  // not an object
+  EXPECT_THROW(harness::parse_jsonl("[1]\n", "x.jsonl"), SweepError);  // not an object
   fs::remove_all(dir);
 }
 
@@ -305,7 +305,7 @@ void write_tiny_definition(const fs::path& dir) {
 TEST(SweepList, PrintsTheShardsKeysWithoutMeasuring) {
   const fs::path dir = temp_dir("list");
   write_tiny_definition(dir);
-  const auto all = bench::expand(bench::load_sweep_file((dir / "tiny.json").string()));
+  const auto all = harness::expand(harness::load_sweep_file((dir / "tiny.json").string()));
   std::multiset<std::string> seen;
   for (int i = 0; i < 3; ++i) {
     const std::string cmd =
@@ -317,7 +317,7 @@ TEST(SweepList, PrintsTheShardsKeysWithoutMeasuring) {
     std::istringstream lines(list.output);
     for (std::string key; std::getline(lines, key);) keys.push_back(key);
     std::vector<std::string> expected;
-    for (const auto& c : bench::shard(all, i, 3)) expected.push_back(c.key);
+    for (const auto& c : harness::shard(all, i, 3)) expected.push_back(c.key);
     EXPECT_EQ(keys, expected) << "shard " << i;
     seen.insert(keys.begin(), keys.end());
   }
@@ -338,14 +338,14 @@ TEST(SweepResume, AKilledRunResumesToTheSameRowsAsAnUninterruptedOne) {
   const auto expected = outcome(whole);
   ASSERT_EQ(expected.size(), 2u * (1 + 4 + 1 + 1));
   // Leaf size 0 is an invalid knob: a failed row, and the sweep went on.
-  EXPECT_EQ(expected.at(bench::config_key("grid-8", "octree", {{"max_depth", 1}, {"max_leaf_size", 0}})).first,
+  EXPECT_EQ(expected.at(harness::config_key("grid-8", "octree", {{"max_depth", 1}, {"max_leaf_size", 0}})).first,
             "failed");
 
   // A real SIGKILL after three rows: no clean-up code runs.
   st = run_cli(tiny_sweep_args(dir, "killed"), {"ACCELBENCH_SWEEP_KILL_AFTER_ROWS=3"});
   ASSERT_TRUE(WIFSIGNALED(st) && WTERMSIG(st) == SIGKILL) << st;
   EXPECT_FALSE(fs::exists(dir / "killed.json"));
-  const auto partial = bench::read_jsonl((dir / "killed.jsonl").string());
+  const auto partial = harness::read_jsonl((dir / "killed.jsonl").string());
   ASSERT_EQ(partial.records.size(), 1u + 3u);  // header + three rows
   EXPECT_FALSE(partial.torn_tail);
 
@@ -402,7 +402,7 @@ TEST(SweepResume, ACorruptedRowStopsTheResumeAndEveryRealConfigurationIsKept) {
   ASSERT_GE(lines.size(), 4u);
 
   // Naive's row and two others: what a run killed after three rows may hold.
-  const std::string naive_key = bench::config_key("random-30", "naive", json::object());
+  const std::string naive_key = harness::config_key("random-30", "naive", json::object());
   std::size_t naive_line = 0;
   for (std::size_t i = 1; i < lines.size(); ++i)
     if (json::parse(lines[i]).value("key", "") == naive_key) naive_line = i;
@@ -468,12 +468,12 @@ TEST(SweepTiming, RowsAreTimedInInterleavedRoundsWithNaive) {
               {"repetitions", 3},
               {"warmup", 0}};
     if (threshold == 0.0) j["noise_threshold"] = 0.0, j["remeasure"] = 1;  // every row noisy: one more pass
-    const auto d = bench::parse_sweep_definition(j);
-    bench::RunOptions o;
+    const auto d = harness::parse_sweep_definition(j);
+    harness::RunOptions o;
     o.out_path = (dir / "t.json").string();
     o.jsonl_path = (dir / "t.jsonl").string();
     o.progress = false;
-    const auto summary = bench::run_sweep(d, o);
+    const auto summary = harness::run_sweep(d, o);
     ASSERT_TRUE(summary.complete);
     const json doc = read_json(dir / "t.json");
     ASSERT_EQ(doc["rows"].size(), 8u);
@@ -497,8 +497,8 @@ TEST(SweepTiming, RowsAreTimedInInterleavedRoundsWithNaive) {
         naive_ms.push_back(naive_row["render_ms"]["samples"][k].get<double>());
         own_ms.push_back(t["samples"][k].get<double>());
       }
-      EXPECT_DOUBLE_EQ(r["speedup"].get<double>(), bench::paired_ratio(naive_ms, own_ms)) << r["key"];
-      EXPECT_DOUBLE_EQ(r["naive_render_ms"].get<double>(), bench::median_of(naive_ms)) << r["key"];
+      EXPECT_DOUBLE_EQ(r["speedup"].get<double>(), harness::paired_ratio(naive_ms, own_ms)) << r["key"];
+      EXPECT_DOUBLE_EQ(r["naive_render_ms"].get<double>(), harness::median_of(naive_ms)) << r["key"];
       EXPECT_LE(r["speedup_ci"][0].get<double>(), r["speedup"].get<double>());
       EXPECT_GE(r["speedup_ci"][1].get<double>(), r["speedup"].get<double>());
       if (r["structure"] == "naive") {
@@ -520,7 +520,7 @@ TEST(SweepTiming, RowsAreTimedInInterleavedRoundsWithNaive) {
 /// Rewrites every record of a JSON Lines file through `edit`.
 template <class Edit>
 void edit_jsonl(const fs::path& path, Edit edit) {
-  auto contents = bench::read_jsonl(path.string());
+  auto contents = harness::read_jsonl(path.string());
   std::ofstream out(path, std::ios::trunc);
   for (auto& r : contents.records) {
     edit(r);
@@ -549,10 +549,10 @@ void killed_on(const fs::path& dir, const std::string& name, std::size_t rows,
 TEST(SweepResume, OnAnotherNodeMeasuresNaiveAgainAndRecordsBothMachines) {
   const fs::path dir = temp_dir("resume_node");
   write_tiny_definition(dir);
-  const std::string here = bench::node_name(bench::machine_info());
+  const std::string here = harness::node_name(harness::machine_info());
   ASSERT_FALSE(here.empty());
   ASSERT_NE(here, "node-a");
-  const std::string first_scene_naive = bench::config_key("random-30", "naive", json::object());
+  const std::string first_scene_naive = harness::config_key("random-30", "naive", json::object());
 
   // Resumed on the node that measured naive: naive is timed again anyway, in the same
   // interleaved rounds as the rows it is the reference for (the 1e9 does not show through).
@@ -601,7 +601,7 @@ TEST(SweepResume, OnAnotherNodeMeasuresNaiveAgainAndRecordsBothMachines) {
   ASSERT_TRUE(moved.contains("mixed_hardware"));
   EXPECT_EQ(moved["mixed_hardware"]["cpu_models"][0], "Other CPU @ 1.0GHz");
   EXPECT_EQ(moved["mixed_hardware"]["cores"][0], 1234);
-  EXPECT_EQ(moved["speedup_basis"], bench::kSpeedupBasis);
+  EXPECT_EQ(moved["speedup_basis"], harness::kSpeedupBasis);
   EXPECT_EQ(outcome(moved), outcome(same));
   EXPECT_TRUE(valid_against_schema(moved, dir));
   fs::remove_all(dir);
@@ -609,7 +609,7 @@ TEST(SweepResume, OnAnotherNodeMeasuresNaiveAgainAndRecordsBothMachines) {
 
 TEST(SweepIntegratorKnobs, EachSettingIsValidatedAgainstNaiveWithTheSameKnobs) {
   const fs::path dir = temp_dir("integrator_knobs");
-  const auto d = bench::parse_sweep_definition(
+  const auto d = harness::parse_sweep_definition(
       {{"name", "ik"},
        {"scenes", {"five"}},
        {"structures", {"naive", "bvh"}},
@@ -617,11 +617,11 @@ TEST(SweepIntegratorKnobs, EachSettingIsValidatedAgainstNaiveWithTheSameKnobs) {
        {"resolution", "16x12"},
        {"repetitions", 1},
        {"warmup", 0}});
-  bench::RunOptions o;
+  harness::RunOptions o;
   o.out_path = (dir / "ik.json").string();
   o.jsonl_path = (dir / "ik.jsonl").string();
   o.progress = false;
-  const bench::RunSummary summary = bench::run_sweep(d, o);
+  const harness::RunSummary summary = harness::run_sweep(d, o);
   EXPECT_TRUE(summary.complete);
   const json results = read_json(dir / "ik.json");
   ASSERT_EQ(results["rows"].size(), 6u);
@@ -696,7 +696,7 @@ TEST(SweepSpd, ValidatesAtAReducedResolutionAndClaimsNoSpeedup) {
   std::ofstream(dir / "bad.json") << json{{"scenes", {"five"}}, {"structures", {"naive"}}, {"integrator", "spd2"}}.dump();
   const std::string got = [&] {
     try {
-      bench::load_sweep_file((dir / "bad.json").string());
+      harness::load_sweep_file((dir / "bad.json").string());
     } catch (const SweepError& e) {
       return std::string(e.what());
     }
@@ -722,8 +722,8 @@ TEST(SweepIntegratorKnobs, CrossesThemAndRecordsTheMaps) {
                                         {"repetitions", 1},
                                         {"warmup", 0}}
                                        .dump();
-  const auto d = bench::load_sweep_file((dir / "p.json").string());
-  const auto configs = bench::expand(d);
+  const auto d = harness::load_sweep_file((dir / "p.json").string());
+  const auto configs = harness::expand(d);
   ASSERT_EQ(configs.size(), 4u);  // 2 values of k x (naive, bvh)
   std::set<std::string> settings;
   for (const auto& c : configs) settings.insert(c.structure + " " + c.integrator_params.dump());
@@ -763,7 +763,7 @@ TEST(SweepIntegratorKnobs, CrossesThemAndRecordsTheMaps) {
                                          .dump();
   const std::string got = [&] {
     try {
-      bench::load_sweep_file((dir / "bad.json").string());
+      harness::load_sweep_file((dir / "bad.json").string());
     } catch (const SweepError& e) {
       return std::string(e.what());
     }

@@ -3,8 +3,8 @@
 // when its interval separates it from the rest. Synthetic timings with noise check the rule: a
 // single lucky sample never wins, a flat optimum is a tie, a clear winner is named.
 
-#include "bench/sweep_definition.h"
-#include "bench/tune.h"
+#include "harness/sweep_definition.h"
+#include "harness/tune.h"
 
 #include "scenes_gen/generators.h"
 
@@ -19,8 +19,8 @@ namespace {
 
 using nlohmann::json;
 
-bench::TuneOptions small_options() {
-  bench::TuneOptions o;
+harness::TuneOptions small_options() {
+  harness::TuneOptions o;
   o.measure.width = 24;
   o.measure.height = 18;
   o.measure.threads = 1;
@@ -39,14 +39,14 @@ TEST(Tune, SearchesValidatesAndConfirmsOnARealScene) {
   g.count = 300;
   const tracer::Scene scene = scenes_gen::generate("random", g);
   const auto o = small_options();
-  const bench::TuneResult r = bench::tune(scene, "kdtree", o);
+  const harness::TuneResult r = harness::tune(scene, "kdtree", o);
 
   std::size_t coarse = 0, refined = 0;
   std::set<std::pair<int, int>> seen;
   for (const auto& p : r.points) {
     EXPECT_TRUE(seen.insert({p.max_depth, p.max_leaf_size}).second) << "point evaluated twice";
     (p.round == 0 ? coarse : refined)++;
-    ASSERT_EQ(p.m.status, bench::RowStatus::Ok) << p.m.reason;
+    ASSERT_EQ(p.m.status, harness::RowStatus::Ok) << p.m.reason;
     EXPECT_EQ(p.m.image_hash, r.naive.image_hash);
     EXPECT_EQ(p.m.params["max_depth"], p.max_depth);
     EXPECT_EQ(p.m.params["max_leaf_size"], p.max_leaf_size);
@@ -75,7 +75,7 @@ TEST(Tune, SearchesValidatesAndConfirmsOnARealScene) {
   EXPECT_LE(r.best_speedup_ci.lo, r.best_speedup);
   EXPECT_GE(r.best_speedup_ci.hi, r.best_speedup);
 
-  const auto j = bench::to_json(r);
+  const auto j = harness::to_json(r);
   EXPECT_EQ(j["points"].size(), r.points.size());
   EXPECT_EQ(j["best"], r.best);
   EXPECT_TRUE(j["points"][r.best].contains("confirmed"));
@@ -86,27 +86,27 @@ TEST(Tune, RefusesStructuresWithoutALeafSizeKnob) {
   g.count = 50;
   const tracer::Scene scene = scenes_gen::generate("random", g);
   try {
-    bench::tune(scene, "naive", small_options());
+    harness::tune(scene, "naive", small_options());
     ADD_FAILURE() << "naive accepted";
-  } catch (const bench::SweepError& e) {
+  } catch (const harness::SweepError& e) {
     EXPECT_EQ(std::string(e.what()), "--accel: naive has no max_leaf_size knob to tune");
   }
-  EXPECT_THROW(bench::tune(scene, "kdtre", small_options()), bench::SweepError);
+  EXPECT_THROW(harness::tune(scene, "kdtre", small_options()), harness::SweepError);
 }
 
 /// Timings of a made-up structure: each point's true time, with multiplicative noise (and a
 /// drift shared by every render of a round), and optionally one lucky search sample.
-class SyntheticTarget : public bench::TuneTarget {
+class SyntheticTarget : public harness::TuneTarget {
  public:
   using TrueTime = std::function<double(int depth, int leaf)>;
   SyntheticTarget(TrueTime truth, double noise, std::pair<int, int> lucky = {-100, -100})
       : truth_(std::move(truth)), noise_(noise), lucky_(lucky), rng_(42) {}
 
-  bench::Reference naive() override { return {1, 0.0, {}}; }
+  harness::Reference naive() override { return {1, 0.0, {}}; }
 
-  bench::Measurement search(const json& params) override {
+  harness::Measurement search(const json& params) override {
     const int d = params.value("max_depth", -1), l = params["max_leaf_size"];
-    bench::Measurement m;
+    harness::Measurement m;
     m.built = true;
     m.params = params;
     m.image_hash = 1;
@@ -115,7 +115,7 @@ class SyntheticTarget : public bench::TuneTarget {
     // The lucky point's search: its samples fell at a quarter of its true time (a quiet moment).
     if (std::make_pair(d, l) == lucky_)
       for (double& s : samples) s = truth_(d, l) / 4.0;
-    m.render_ms = bench::summarize(samples);
+    m.render_ms = harness::summarize(samples);
     return m;
   }
 
@@ -124,13 +124,13 @@ class SyntheticTarget : public bench::TuneTarget {
     return std::vector<bool>(params.size() + 1, true);
   }
 
-  std::optional<bench::Sample> time(std::size_t i) override {
+  std::optional<harness::Sample> time(std::size_t i) override {
     // Every contender is timed once per round: a new round begins every n + 1 calls, with a
     // drift of the machine that all of that round's renders share.
     if (calls_++ % (confirm_.size() + 1) == 0) drift_ = 1.0 + 0.3 * std::sin(double(rounds_++));
     const double t = i == 0 ? 1000.0 : truth_(confirm_[i - 1].value("max_depth", -1), confirm_[i - 1]["max_leaf_size"]);
     const double ms = t * drift_ * jitter();
-    return bench::Sample{ms, ms};
+    return harness::Sample{ms, ms};
   }
 
  private:
@@ -145,8 +145,8 @@ class SyntheticTarget : public bench::TuneTarget {
   double drift_ = 1.0;
 };
 
-bench::TuneOptions synthetic_options() {
-  bench::TuneOptions o;
+harness::TuneOptions synthetic_options() {
+  harness::TuneOptions o;
   o.measure.repetitions = 3;
   o.confirm_candidates = 6;
   o.confirm_rounds = 15;
@@ -165,7 +165,7 @@ TEST(TuneSynthetic, ASingleLuckySampleNeverWins) {
   ASSERT_GT(truth(5, 32), 1.3 * truth(14, 8));
   ASSERT_LT(truth(5, 32) / 4.0, 0.9 * truth(14, 8));
   SyntheticTarget target(truth, 0.03, {5, 32});
-  const bench::TuneResult r = bench::tune_with(target, "kdtree", kKnobs, synthetic_options());
+  const harness::TuneResult r = harness::tune_with(target, "kdtree", kKnobs, synthetic_options());
   // The search was fooled: the lucky point had the fastest search median...
   std::size_t lucky = r.points.size();
   for (std::size_t i = 0; i < r.points.size(); ++i)
@@ -186,7 +186,7 @@ TEST(TuneSynthetic, AFlatOptimumIsATieAndAClearOneAWinner) {
   // Flat: every depth from 10 to 20 with leaf 4-16 takes the same 50 ms.
   const auto flat = [](int d, int l) { return (d >= 10 && d <= 20 && l >= 4 && l <= 16) ? 50.0 : 80.0; };
   SyntheticTarget flat_target(flat, 0.05);
-  const bench::TuneResult f = bench::tune_with(flat_target, "kdtree", kKnobs, synthetic_options());
+  const harness::TuneResult f = harness::tune_with(flat_target, "kdtree", kKnobs, synthetic_options());
   EXPECT_FALSE(f.separated);
   EXPECT_GE(f.tie.size(), 2u);
   for (std::size_t i : f.tie) EXPECT_EQ(flat(f.points[i].max_depth, f.points[i].max_leaf_size), 50.0);
@@ -195,7 +195,7 @@ TEST(TuneSynthetic, AFlatOptimumIsATieAndAClearOneAWinner) {
   // Clear: one point is 20% faster than every other; low noise.
   const auto sharp = [](int d, int l) { return (d == 14 && l == 8) ? 40.0 : 50.0 + d + l; };
   SyntheticTarget sharp_target(sharp, 0.01);
-  const bench::TuneResult s = bench::tune_with(sharp_target, "kdtree", kKnobs, synthetic_options());
+  const harness::TuneResult s = harness::tune_with(sharp_target, "kdtree", kKnobs, synthetic_options());
   EXPECT_TRUE(s.separated);
   ASSERT_EQ(s.tie.size(), 1u);
   EXPECT_EQ(s.points[s.best].max_depth, 14);

@@ -2,7 +2,7 @@
 // The render entry point: one scene, one built structure, one integrator chosen by the caller.
 //
 // An integrator (Whitted, SPD, photon mapping, ...) is one row of type Integrator: a name, its
-// knobs and its render function. bench/ keeps the one table of them; the tracer knows only its
+// knobs and its render function. integrators/ keeps the one table of them; the tracer knows only its
 // own. Each integrator is a template on the intersector, rendered through the one tile-parallel
 // loop of render_frame.h, so every structure's loop is compiled on its own and the image and the
 // statistics are bit-identical at any thread count.
@@ -52,7 +52,7 @@ struct RenderResult {
   nlohmann::json stats = nlohmann::json::object();
 };
 
-/// One integrator: a row of the integrator table (bench/integrators.h).
+/// One integrator: a row of the integrator table (integrators/integrators.h).
 struct Integrator {
   std::string_view name;         ///< Its name in --integrator, scene JSON and results rows.
   std::string_view description;  ///< One line for --help and the docs.

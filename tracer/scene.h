@@ -57,7 +57,7 @@ struct RenderSettings {
 };
 
 /// The integrator a scene asks for, and its knobs. The tracer only stores them: the integrator
-/// table (bench/integrators.h) knows the names, and each integrator checks its own knobs.
+/// table (integrators/integrators.h) knows the names, and each integrator checks its own knobs.
 struct IntegratorChoice {
   std::string name;                                  ///< Integrator name; "" = the command's default.
   nlohmann::json knobs = nlohmann::json::object();   ///< Its knobs as written in the scene.

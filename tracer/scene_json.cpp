@@ -542,7 +542,7 @@ Scene scene_from_json(const json& doc) {
   });
   if (top.has("render")) scene.render = read_render(top["render"], "/render");
   if (top.has("integrator")) {
-    // The name and the knobs are only stored here: bench/ knows the integrators and checks both.
+    // The name and the knobs are only stored here: integrators/ knows the integrators and checks both.
     const json& v = top["integrator"];
     if (v.is_string()) {
       scene.integrator.name = v.get<std::string>();
