@@ -27,12 +27,12 @@ struct BuildLimits;
 
 /// Knobs of the binned SAH builder.
 struct BvhParams {
-  /// Centroid bins per axis the SAH evaluates, 8..256; more bins approach a full sweep.
+  /// Centroid bins per axis the SAH evaluates; more bins approach a full sweep.
   int bins = 16;
   /// A node holding more primitives than this is always split (unless max_depth stops it);
-  /// at or below it the SAH decides between a leaf and a split. 1..255.
+  /// at or below it the SAH decides between a leaf and a split.
   int max_leaf_size = 4;
-  /// Deepest level, root = 0: a node at this depth is a leaf whatever it holds. 0..64.
+  /// Deepest level, root = 0: a node at this depth is a leaf whatever it holds.
   int max_depth = 64;
   /// Cost of one traversal step relative to one primitive test (the SAH's C_trav / C_isect).
   /// 3 traced spheres8000 fastest (1 gave leaves of one sphere and 20% more node visits).

@@ -46,9 +46,9 @@ enum class SplitRule : std::uint8_t {
 /// budget shaving thin empty slabs off cells and leaves large leaves. The fit and the timings
 /// behind these defaults: docs/structures.md ("kd-tree SAH costs").
 struct KdTreeParams {
-  /// Deepest level a cell may be split to, root = 0; a cell at this depth is a leaf. 0..64.
+  /// Deepest level a cell may be split to, root = 0; a cell at this depth is a leaf.
   int max_depth = 24;
-  /// A cell holding this many primitives or fewer is a leaf. >= 1.
+  /// A cell holding this many primitives or fewer is a leaf.
   int max_leaf_size = 4;
   /// Where a primitive straddling a split plane is stored.
   Placement placement = Placement::Leaves;
@@ -58,7 +58,7 @@ struct KdTreeParams {
   float traversal_cost = 1.0f;
   /// SAH cost of one primitive test, fitted for a sphere test (pbrt-v3: 80).
   float intersection_cost = 0.5f;
-  /// Fraction of the SAH cost forgiven when a split leaves one side empty, 0..1 (pbrt-v3: 0.5).
+  /// Fraction of the SAH cost forgiven when a split leaves one side empty (pbrt-v3: 0.5).
   float empty_bonus = 0.2f;
 
   /// Name, range, unit and doc line of every knob above.

@@ -30,9 +30,9 @@ struct BuildLimits;
 /// tuner refines this per scene); depth 8 (cells 1/256 of the scene) is not reached there, so
 /// it only guards against runaway subdivision.
 struct OctreeParams {
-  /// Deepest level a cell may be split to, root = 0; a cell at this depth is a leaf. 0..64.
+  /// Deepest level a cell may be split to, root = 0; a cell at this depth is a leaf.
   int max_depth = 8;
-  /// A cell holding more primitives than this is split (unless max_depth stops it). >= 1.
+  /// A cell holding more primitives than this is split (unless max_depth stops it).
   int max_leaf_size = 8;
   /// Where a primitive overlapping several children is stored.
   Placement placement = Placement::Leaves;

@@ -170,9 +170,10 @@ SweepDefinition definition_from_flags(const SweepFlags& f) {
   }
 }
 
-int run(const SweepFlags& f) {
+int run(const SweepFlags& f, const Hooks& hooks) {
   const SweepDefinition d = definition_from_flags(f);
   RunOptions o;
+  o.after_row = hooks.after_sweep_row;
   std::tie(o.shard_index, o.shard_count) = parse_shard(f.shard_text);
   if (f.list) {
     for (const auto& c : shard(expand(d), o.shard_index, o.shard_count))
@@ -215,7 +216,7 @@ int run(const SweepFlags& f) {
 
 }  // namespace
 
-void add_sweep_command(CLI::App& app, int& exit_code) {
+void add_sweep_command(CLI::App& app, int& exit_code, const Hooks& hooks) {
   auto flags = std::make_shared<SweepFlags>();
   CLI::App* cmd = app.add_subcommand(
       "sweep", "Measure structures x max_depth x max_leaf_size (x placement x split) x scenes");
@@ -251,7 +252,7 @@ void add_sweep_command(CLI::App& app, int& exit_code) {
                 "With one render thread, let it move between CPUs (by default it stays on the CPU it starts on)");
   cmd->add_flag("--list", flags->list,
                 "Check the definition, print the shard's configuration keys one a line, and exit");
-  cmd->callback([flags, &exit_code] { exit_code = run(*flags); });
+  cmd->callback([flags, hooks, &exit_code] { exit_code = run(*flags, hooks); });
 }
 
 }  // namespace cli

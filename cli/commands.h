@@ -6,12 +6,25 @@
 
 #include <CLI/CLI.hpp>
 
+#include <cstddef>
+#include <functional>
+
 namespace cli {
+
+/// What a caller of run() may inject (the tests); main() injects nothing.
+struct Hooks {
+  /// Passed to harness::RunOptions::after_row of `sweep`: called after each row it writes.
+  std::function<void(std::size_t rows_written)> after_sweep_row;
+};
+
+/// The whole command line: parses argv, runs the subcommand and returns the exit status; a
+/// failure is one line on stderr, `accelbench: <message>`.
+int run(int argc, char** argv, const Hooks& hooks = {});
 
 
 void add_render_command(CLI::App& app, int& exit_code);
 void add_gen_command(CLI::App& app, int& exit_code);
-void add_sweep_command(CLI::App& app, int& exit_code);
+void add_sweep_command(CLI::App& app, int& exit_code, const Hooks& hooks = {});
 void add_tune_command(CLI::App& app, int& exit_code);
 void add_merge_command(CLI::App& app, int& exit_code);
 void add_convert_command(CLI::App& app, int& exit_code);

@@ -13,9 +13,7 @@
 
 #include <chrono>
 #include <filesystem>
-#include <csignal>
 #include <cstdio>
-#include <cstdlib>
 #include <functional>
 #include <map>
 #include <optional>
@@ -33,17 +31,6 @@ std::string clock_text(double seconds) {
   if (s >= 3600) std::snprintf(buf, sizeof buf, "%ld:%02ld:%02ld", s / 3600, s / 60 % 60, s % 60);
   else std::snprintf(buf, sizeof buf, "%ld:%02ld", s / 60, s % 60);
   return buf;
-}
-
-/// The test hook: ACCELBENCH_SWEEP_KILL_AFTER_ROWS=N sends this process a signal after N rows,
-/// SIGKILL or, with ACCELBENCH_SWEEP_KILL_SIGNAL=TERM, SIGTERM.
-std::size_t kill_after_rows() {
-  const char* v = std::getenv("ACCELBENCH_SWEEP_KILL_AFTER_ROWS");
-  return v ? std::size_t(std::strtoull(v, nullptr, 10)) : 0;
-}
-int kill_signal() {
-  const char* v = std::getenv("ACCELBENCH_SWEEP_KILL_SIGNAL");
-  return v && std::string(v) == "TERM" ? SIGTERM : SIGKILL;
 }
 
 /// A configuration of a batch: its row (nullptr for naive when this shard does not own naive's
@@ -64,8 +51,8 @@ struct TimeBatch {
   const tracer::Scene& scene;
   const SceneSpec& spec;
   std::uint64_t primitives;
-  const MeasureOptions& nmo;  ///< Naive's options (the validation resolution, when set).
-  const MeasureOptions& cmo;  ///< Every other contender's.
+  const MeasureOptions& naive_options;  ///< Naive's options (the validation resolution, when set).
+  const MeasureOptions& contender_options;  ///< Every other contender's.
   const SweepDefinition& definition;
   RunSummary& summary;
   Emit emit;
@@ -76,7 +63,7 @@ struct TimeBatch {
     Rounds rounds(batch.size());
     const auto ok = [&](std::size_t i) { return batch[i].p.m.status == RowStatus::Ok; };
     const auto time = [&](std::size_t i) {
-      return time_render(scene, batch[i].p, batch[i].naive ? nmo : cmo);
+      return time_render(scene, batch[i].p, batch[i].naive ? naive_options : contender_options);
     };
     const bool apart = definition.validates_apart();
     // Runs `count` rounds over naive and `who`; false when stopped before they were complete.
@@ -140,7 +127,7 @@ struct TimeBatch {
       if (!c.row) continue;
       // Stopped before the rounds were complete: timed in part, measured again on --resume.
       if (c.p.m.status == RowStatus::Ok && !complete && naive.status == RowStatus::Ok) continue;
-      const MeasureOptions& o = c.naive ? nmo : cmo;
+      const MeasureOptions& o = c.naive ? naive_options : contender_options;
       if (c.p.m.status == RowStatus::Ok && o.inspect && c.p.image) inspect(scene, c.p, o);
       std::optional<Reference> reference;
       if (naive.status == RowStatus::Ok && complete) {
@@ -151,7 +138,7 @@ struct TimeBatch {
         c.p.m.status = RowStatus::Failed;
         c.p.m.reason = "naive, the reference, failed while being timed: " + naive.reason;
       }
-      emit(make_row(*c.row, spec, primitives, c.naive ? nmo : cmo, c.p.m, reference), *c.row,
+      emit(make_row(*c.row, spec, primitives, c.naive ? naive_options : contender_options, c.p.m, reference), *c.row,
            describe(c.p.m, reference));
     }
     // After the rows: inspecting a row can render too (fronts' references and extra seeds).
@@ -244,7 +231,6 @@ RunSummary run_sweep(const SweepDefinition& definition, const RunOptions& option
   }
 
   install_stop_handlers();
-  const std::size_t kill_after = kill_after_rows();
   const std::size_t total = pending.size();
 
   auto emit = [&](json row, const SweepConfig& c, const std::string& what) {
@@ -262,7 +248,7 @@ RunSummary run_sweep(const SweepDefinition& definition, const RunOptions& option
                    definition.scenes[c.scene].name.c_str(), c.structure.c_str(), knobs.c_str(),
                    what.c_str(), clock_text(elapsed).c_str(), clock_text(left).c_str());
     }
-    if (kill_after && summary.measured == kill_after) std::raise(kill_signal());
+    if (options.after_row) options.after_row(summary.measured);
   };
   auto describe = [](const Measurement& m, const std::optional<Reference>& reference) {
     if (m.status != RowStatus::Ok || !m.render_ms) return std::string(status_name(m.status)) + ": " + m.reason;
@@ -312,30 +298,30 @@ RunSummary run_sweep(const SweepDefinition& definition, const RunOptions& option
       if (stop_requested()) break;
       const std::vector<std::size_t>& members = of_setting[ip];
       const json& integrator_params = pending[members.front()].integrator_params;
-      MeasureOptions nmo = naive_mo, cmo = mo;
-      nmo.integrator_params = cmo.integrator_params = integrator_params;
+      MeasureOptions naive_options = naive_mo, contender_options = mo;
+      naive_options.integrator_params = contender_options.integrator_params = integrator_params;
       const std::string naive_key = config_key(spec.name, "naive", json::object(), integrator_params);
       std::optional<std::size_t> naive_row;  // the sweep's own naive row, when it is pending
       for (std::size_t i : members)
         if (pending[i].key == naive_key) naive_row = i;
-      nmo.inspect = naive_row && !definition.validates_apart() ? mo.inspect : nullptr;
+      naive_options.inspect = naive_row && !definition.validates_apart() ? mo.inspect : nullptr;
 
       // Contender 0 is naive: the reference for validation, and timed in every round.
       std::vector<Contender> batch;
       batch.push_back({naive_row ? &pending[*naive_row] : nullptr, true,
-                       prepare(*scene, boxes, "naive", json::object(), nmo, std::nullopt)});
+                       prepare(*scene, boxes, "naive", json::object(), naive_options, std::nullopt)});
       summary.build_s += batch[0].p.m.spent_build_s;
       if (batch[0].p.m.status != RowStatus::Ok) {
         summary.trace_s += batch[0].p.m.spent_trace_s;
         const std::string why = "no naive reference on this scene: " + batch[0].p.m.reason;
-        if (naive_row) emit(make_row(pending[*naive_row], spec, primitives, nmo, batch[0].p.m, std::nullopt),
+        if (naive_row) emit(make_row(pending[*naive_row], spec, primitives, naive_options, batch[0].p.m, std::nullopt),
                             pending[*naive_row], describe(batch[0].p.m, std::nullopt));
         for (std::size_t i : members)
-          if (i != naive_row) emit(make_failed_row(pending[i], spec, cmo, why), pending[i], "failed: " + why);
+          if (i != naive_row) emit(make_failed_row(pending[i], spec, contender_options, why), pending[i], "failed: " + why);
         continue;
       }
       const Reference reference{batch[0].p.m.image_hash, 0.0, batch[0].p.m.rays};
-      const TimeBatch time_batch{*scene, spec, primitives, nmo, cmo, definition, summary, emit, describe,
+      const TimeBatch time_batch{*scene, spec, primitives, naive_options, contender_options, definition, summary, emit, describe,
                                  options.progress};
       const std::uint64_t budget = accel::memory_budget_bytes(mo.limits);
       std::uint64_t held = 0;
@@ -343,11 +329,11 @@ RunSummary run_sweep(const SweepDefinition& definition, const RunOptions& option
         if (i == naive_row) continue;
         if (stop_requested()) break;
         const SweepConfig& c = pending[i];
-        Prepared p = prepare(*scene, boxes, c.structure, c.params, cmo, reference);
+        Prepared p = prepare(*scene, boxes, c.structure, c.params, contender_options, reference);
         summary.build_s += p.m.spent_build_s;
         if (p.m.status != RowStatus::Ok) {
           summary.trace_s += p.m.spent_trace_s;
-          emit(make_row(c, spec, primitives, cmo, p.m, reference), c, describe(p.m, reference));
+          emit(make_row(c, spec, primitives, contender_options, p.m, reference), c, describe(p.m, reference));
           continue;
         }
         // Every structure of a batch is held while the rounds run: their memory together stays

@@ -6,6 +6,7 @@
 #include "harness/sweep_definition.h"
 #include "harness/sweep_measure.h"
 
+#include <functional>
 #include <string>
 
 namespace harness {
@@ -22,6 +23,9 @@ struct RunOptions {
   /// Folder for the rows' images when the sweep saves them ("images": true); "" = beside the
   /// JSON Lines file, named after it with "-images".
   std::string images_dir;
+  /// Called after each row is written, with the rows this run has written so far; empty: none.
+  /// The tests stop the process there (a real SIGKILL or SIGTERM at a known row).
+  std::function<void(std::size_t rows_written)> after_row;
 };
 
 /// What a run did.
@@ -44,9 +48,8 @@ struct RunSummary {
 };
 
 /// Runs the sweep. Throws SweepError for unusable files (e.g. --resume on another sweep's file).
-/// Setting ACCELBENCH_SWEEP_KILL_AFTER_ROWS=N makes the process SIGKILL itself after writing N
-/// rows (SIGTERM with ACCELBENCH_SWEEP_KILL_SIGNAL=TERM): the tests use it to check that a killed
-/// or stopped sweep resumes to the same rows.
+/// SIGINT and SIGTERM stop it cleanly after the batch being written (see RunOptions::after_row
+/// for how the tests stop it at a chosen row).
 RunSummary run_sweep(const SweepDefinition& definition, const RunOptions& options);
 
 }  // namespace harness

@@ -42,7 +42,7 @@ enum class DensityFilter : std::uint8_t {
 struct DensityParams {
   /// Kernel (JSON: "box", "cone", "biweight").
   DensityFilter filter = DensityFilter::Cone;
-  /// Cone filter constant k, >= 1 (the paper: 1 is the sharpest cone that reaches 0 at r).
+  /// Cone filter constant k (the paper: 1 is the sharpest cone that reaches 0 at r).
   float cone_k = 1.1f;
 
   static const knobs::KnobTable<DensityParams>& knobs();

@@ -12,6 +12,7 @@
 // map holds the same light it would have with uniform emission, with far fewer photons wasted.
 
 #include "map_needs.h"
+#include "vec.h"
 
 #include "tracer/orthonormal_basis.h"
 #include "tracer/scene.h"
@@ -20,9 +21,6 @@
 #include <vector>
 
 namespace photon {
-
-using Color = glm::vec3;  ///< Linear RGB, as tracer::Color.
-using Vec3 = glm::vec3;   ///< World-space vector, as tracer::Vec3.
 
 /// The photon passes, each with its own map.
 enum class PhotonPass : std::uint8_t {

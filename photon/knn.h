@@ -20,9 +20,9 @@ namespace photon {
 
 /// Knobs of one gather (the paper's optimisations 2 and 3 are `cull` and `cache_distances`).
 struct GatherParams {
-  /// Photons gathered per lookup, 1..2^20.
+  /// Photons gathered per lookup.
   int k = 50;
-  /// Largest distance searched, world units, > 0 (+inf: unbounded).
+  /// Largest distance searched, world units (+inf: unbounded).
   float max_radius = 0.1f;
   /// Optimisation 2: reject photons from the back hemisphere of the query's normal before the
   /// heap. Changes the answer (k front-facing photons instead of k photons).

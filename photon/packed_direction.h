@@ -7,14 +7,12 @@
 // pi/256 * sin(theta) across it of the true one: under 0.8 degrees. It is used only to cull photons arriving from behind a surface
 // (the sign of a dot product), where that error matters only within 0.8 degrees of grazing.
 
-#include <glm/vec3.hpp>
+#include "vec.h"
 
 #include <array>
 #include <cstdint>
 
 namespace photon {
-
-using Vec3 = glm::vec3;
 
 /// theta (0..254 over [0, pi]) and phi (0..255 over [0, 2 pi)).
 struct PackedDirection {

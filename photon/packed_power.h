@@ -13,14 +13,12 @@
 // density estimate made of them is biased by the same factor, under 0.4 % and known exactly:
 // decode(encode(c)) / c. Tests: tests/photon_record_test.cpp.
 
-#include <glm/vec3.hpp>
+#include "vec.h"
 
 #include <array>
 #include <cstdint>
 
 namespace photon {
-
-using Color = glm::vec3;
 
 /// Shared-exponent power: bytes 0..2 the mantissas of r, g, b, byte 3 the exponent e + 136
 /// (decoded channel = mantissa * 2^(e - 8)).

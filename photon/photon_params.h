@@ -15,28 +15,28 @@
 namespace photon {
 
 struct PhotonParams {
-  /// Photons stored in the global map (light after at least one diffuse bounce), photons, >= 1.
+  /// Photons stored in the global map (light after at least one diffuse bounce), photons.
   int global_photons = 100000;
-  /// Photons stored in the caustic map (light after specular bounces only), photons, >= 1.
+  /// Photons stored in the caustic map (light after specular bounces only), photons.
   int caustic_photons = 50000;
-  /// Photons gathered per radiance estimate: the k of the kNN gather, in [1, 2^20].
+  /// Photons gathered per radiance estimate: the k of the kNN gather.
   int k = 50;
-  /// Largest gather radius, world units, > 0; unset ("auto") = 1/20 of the diagonal of the box
+  /// Largest gather radius, world units; unset ("auto") = 1/20 of the diagonal of the box
   /// around the scene's bounded primitives (unbounded when there are none).
   std::optional<float> max_radius;
   /// Density-estimation kernel: box, cone (the paper's) or biweight.
   DensityFilter filter = DensityFilter::Cone;
-  /// Cone filter constant k >= 1: weight 1 - d / (cone_k r).
+  /// Cone filter constant: weight 1 - d / (cone_k r).
   float cone_k = 1.1f;
-  /// Surface interactions per photon path before it is dropped, in [1, 1000].
+  /// Surface interactions per photon path before it is dropped.
   int max_photon_depth = 64;
-  /// Final-gather rays per diffuse camera-path hit, in [0, 65536]; 0 = read the global map
+  /// Final-gather rays per diffuse camera-path hit; 0 = read the global map
   /// directly there instead.
   int final_gather_rays = 0;
   /// Photon kd-tree variant: balanced (the paper's), sliding_midpoint, median_buckets or
   /// brute_force (photon/photon_tree_params.h); the image is bit-identical across them.
   PhotonTreeKind photon_tree = PhotonTreeKind::Balanced;
-  /// Photons per leaf of the bucket trees (sliding_midpoint, median_buckets), in [1, 256];
+  /// Photons per leaf of the bucket trees (sliding_midpoint, median_buckets);
   /// the kd-tree's own default.
   int leaf_size = PhotonTreeParams{}.leaf_size;
   /// The paper's optimisation 2: reject photons from behind the surface before the heap.

@@ -33,12 +33,12 @@ enum class PhotonTreeKind : std::uint8_t {
 struct PhotonTreeParams {
   /// Tree variant (JSON: "balanced", "sliding_midpoint", "median_buckets", "brute_force").
   PhotonTreeKind photon_tree = PhotonTreeKind::Balanced;
-  /// Bucket trees: a cell with this many photons or fewer is a leaf, photons, 1..256. 16: on
+  /// Bucket trees: a cell with this many photons or fewer is a leaf, photons. 16: on
   /// a diffuse-only Cornell-box stand-in, leaves of 12 to 32 gathered within a few per cent of
   /// each other for k = 1..200 and 10^4..10^6 photons, 8 was 10-25 % slower
   /// (docs/photon-kdtree.md).
   int leaf_size = 16;
-  /// Threads building a balanced tree, 0 = one per core, 1..256; the tree is the same for any
+  /// Threads building a balanced tree, 0 = one per core; the tree is the same for any
   /// count. (The bucket trees build on one thread.)
   int build_threads = 0;
 

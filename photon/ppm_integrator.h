@@ -26,26 +26,26 @@
 namespace photon {
 
 struct PpmParams {
-  /// Photon passes, each with fresh maps, in [1, 1000000].
+  /// Photon passes, each with fresh maps.
   int passes = 64;
-  /// Photons stored per map (caustic and global) per pass, photons, in [1, 2^31-1].
+  /// Photons stored per map (caustic and global) per pass, photons.
   int photons_per_pass = 100000;
   /// Photon paths one map may emit in a pass before it stops short of photons_per_pass, paths,
-  /// in [0, 2^40]; 0 = the tracer's own cap (256 per photon asked for, plus 65536). A map cut
+  /// 0 = the tracer's own cap (256 per photon asked for, plus 65536). A map cut
   /// short keeps its photons at the light's power over the paths emitted, so its estimate stays
   /// unbiased; what it bounds is the time a pass spends on light that rarely reaches a diffuse
   /// surface (the ring's global map: about 260 paths per photon stored).
   std::uint64_t max_paths = 0;
-  /// Radius every visible point starts with, world units, > 0; unset ("auto"): each point's
+  /// Radius every visible point starts with, world units; unset ("auto"): each point's
   /// distance to the initial_photons-th nearest photon of a pilot pass (photons not counted in
   /// the estimate), at most 1/20 of the diagonal of the box around the scene's bounded primitives.
   std::optional<float> initial_radius;
-  /// Photons of the pilot pass within an automatic initial radius, in [1, 2^20].
+  /// Photons of the pilot pass within an automatic initial radius.
   int initial_photons = 32;
   /// The share of new photons kept in N at each pass, in (0, 1]: 2/3 balances the bias and the
   /// variance that the shrinking radius leaves (pbrt-v3's default).
   float alpha = 2.0f / 3.0f;
-  /// Surface interactions per photon path before it is dropped, in [1, 1000].
+  /// Surface interactions per photon path before it is dropped.
   int max_photon_depth = 64;
   /// Seed of the photon paths; pass i draws from a seed of its own derived from it.
   std::uint64_t seed = 1;

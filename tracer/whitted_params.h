@@ -14,11 +14,11 @@
 namespace tracer {
 
 struct WhittedParams {
-  /// Maximum recursion depth (camera ray = 1), in [1, 1000]; 0 = the scene's render.max_depth.
+  /// Maximum recursion depth (camera ray = 1); 0 = the scene's render.max_depth.
   int max_depth = 0;
-  /// Paths whose weight falls below this are cut, in [0, 1]; -1 = the scene's min_weight.
+  /// Paths whose weight falls below this are cut; -1 = the scene's min_weight.
   double min_weight = -1.0;
-  /// Camera rays per pixel, in [1, 65536]; 0 = the scene camera's samples_per_pixel.
+  /// Camera rays per pixel; 0 = the scene camera's samples_per_pixel.
   int spp = 0;
   /// Seed of the stratified sub-pixel jitter; 0 = the fixed pattern every earlier render used.
   /// Renders with other seeds are independent estimates of the same image (spp > 1).

@@ -33,15 +33,34 @@
 
 namespace accel {
 
-/// Knobs of a wide BVH; W (4 or 8) only names the table's owner, bvh4 or bvh8.
+/// What each registered width is called and starts with: one registry entry per
+/// specialisation (a width without one does not compile, rather than borrowing a name).
+template <int W>
+struct WideBvhWidth;
+template <>
+struct WideBvhWidth<4> {
+  static constexpr const char* kName = "bvh4";
+  static constexpr const char* kSummary =
+      "4-wide BVH, binned SAH, SoA nodes tested in one SIMD step, SIMD sphere leaves";
+  static constexpr int kLeafSize = 4;  ///< Default max_leaf_size: one SIMD step of spheres.
+};
+template <>
+struct WideBvhWidth<8> {
+  static constexpr const char* kName = "bvh8";
+  static constexpr const char* kSummary =
+      "8-wide BVH, binned SAH, SoA nodes tested in one SIMD step, SIMD sphere leaves";
+  static constexpr int kLeafSize = 8;  ///< Default max_leaf_size: one SIMD step of spheres.
+};
+
+/// Knobs of a wide BVH (the same for every width; the table is owned by its width's name).
 template <int W>
 struct WideBvhParams {
-  /// Centroid bins per axis the SAH evaluates, 8..256.
+  /// Centroid bins per axis the SAH evaluates.
   int bins = 16;
   /// A range holding more primitives than this is always split; at or below it the SAH decides
-  /// between a leaf and a split. 1..255.
-  int max_leaf_size = W == 4 ? 4 : 8;
-  /// Deepest level of wide nodes, root = 0; a range there is a leaf whatever it holds. 0..64.
+  /// between a leaf and a split.
+  int max_leaf_size = WideBvhWidth<W>::kLeafSize;
+  /// Deepest level of wide nodes, root = 0; a range there is a leaf whatever it holds.
   int max_depth = 64;
   /// Cost of one wide node step relative to one primitive test (the SAH's C_trav / C_isect).
   float traversal_cost = 3.0f;
@@ -67,10 +86,8 @@ class WideBvh {
  public:
   using Params = WideBvhParams<W>;
   using Node = WideNode<W>;
-  static constexpr const char* kName = W == 4 ? "bvh4" : "bvh8";
-  static constexpr const char* kSummary =
-      W == 4 ? "4-wide BVH, binned SAH, SoA nodes tested in one SIMD step, SIMD sphere leaves"
-             : "8-wide BVH, binned SAH, SoA nodes tested in one SIMD step, SIMD sphere leaves";
+  static constexpr const char* kName = WideBvhWidth<W>::kName;
+  static constexpr const char* kSummary = WideBvhWidth<W>::kSummary;
   /// Traversal stack entries: a node pushes at most W - 1 children, 64 levels deep.
   static constexpr int kStackSize = (W - 1) * 64 + 1;
 

@@ -19,7 +19,7 @@ const knobs::KnobTable<WideBvhParams<W>>& WideBvhParams<W>::knobs() {
   using P = WideBvhParams<W>;
   using K = knobs::Knob<P>;
   static const knobs::KnobTable<P> table(
-      W == 4 ? "bvh4" : "bvh8",
+      WideBvhWidth<W>::kName,
       {K::integer("bins", &P::bins, 8, 256, "bins per axis",
                   "Centroid bins per axis the SAH evaluates; more bins approach a full sweep.")
            .probes({8, 256}),
