@@ -161,8 +161,13 @@ std::string default_structures() {
     const std::string& n = info.name;
     if (n == "naive" || !info.built || !info.exact) continue;  // every structure must equal naive
     out += (out.empty() ? "" : ",") + n;
-    if (n == "octree") out += ",octree:placement=every_level";
-    if (n == "kdtree") out += ",kdtree:split=sah";
+    // Each other algorithm a variant knob selects (a placement, a split rule) is a structure of
+    // its own here: the tables say which they are.
+    for (const json& k : info.knob_table)
+      if (k.at("variant").get<bool>() && k.contains("choices"))
+        for (const json& choice : k.at("choices"))
+          if (choice != k.at("default"))
+            out += "," + n + ":" + k.at("name").get<std::string>() + "=" + choice.get<std::string>();
   }
   return out;
 }

@@ -28,8 +28,9 @@ struct CheckedStructure {
 /// an unknown or unbuilt structure; knobs are checked when the structure is built.
 std::vector<CheckedStructure> parse_checked_structures(const std::string& list, const std::string& flag);
 
-/// Every built structure but naive, with the octree's every_level placement and the kd-tree's
-/// SAH split as extra entries.
+/// Every built exact structure but naive, and as extra entries every other choice of its variant
+/// knobs (Knob::variant(): octree:placement=every_level, kdtree:placement=every_level,
+/// kdtree:split=sah).
 std::string default_structures();
 
 struct StabilityOptions {

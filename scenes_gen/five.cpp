@@ -2,7 +2,7 @@
 // diffuse ones, standing on a floor (an unbounded plane, so the structures still hold five).
 
 #include "materials.h"
-#include "registry.h"
+#include "generator_functions.h"
 
 namespace scenes_gen {
 

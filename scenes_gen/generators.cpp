@@ -1,6 +1,6 @@
 #include "generators.h"
 
-#include "registry.h"
+#include "generator_functions.h"
 
 #include <array>
 

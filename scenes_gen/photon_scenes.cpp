@@ -5,7 +5,7 @@
 #include "photon_scenes.h"
 
 #include "materials.h"
-#include "registry.h"
+#include "generator_functions.h"
 
 #include "photon/photon_integrator.h"
 #include "photon/photon_params.h"

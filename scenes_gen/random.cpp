@@ -4,7 +4,7 @@
 
 #include "framing.h"
 #include "materials.h"
-#include "registry.h"
+#include "generator_functions.h"
 #include "rng.h"
 
 #include <cmath>

@@ -3,7 +3,7 @@
 // it, and the bar's side faces show them squeezed, mirrored by total internal reflection.
 
 #include "materials.h"
-#include "registry.h"
+#include "generator_functions.h"
 
 #include <cmath>
 

@@ -3,7 +3,7 @@
 
 #include "framing.h"
 #include "materials.h"
-#include "registry.h"
+#include "generator_functions.h"
 #include "rng.h"
 
 namespace scenes_gen {

@@ -5,7 +5,7 @@
 
 #include "accel/accel.h"
 #include "accel/isa.h"
-#include "tracer/geometry.h"
+#include "tracer/scene_geometry.h"
 #include "tracer/intersector.h"
 
 #include <gtest/gtest.h>

@@ -105,6 +105,21 @@ TEST(Registry, EveryIntegratorReachesTheCommandLineSweepsAndDocs) {
       << "docs/tracer.md: paste the output of `accelbench integrators --markdown` under its knob reference";
 }
 
+// The generator table reaches `accelbench gen`, the sweeps' scene items and the docs.
+TEST(Registry, EveryGeneratorReachesTheCommandLineSweepsAndDocs) {
+  const ProcessRun help = run(std::string(ACCELBENCH_CLI) + " gen --help");
+  ASSERT_EQ(help.status, 0) << help.output;
+  const ProcessRun list = run(std::string(ACCELBENCH_CLI) + " gen --list");
+  ASSERT_EQ(list.status, 0) << list.output;
+  EXPECT_NE(read(ACCELBENCH_SOURCE_DIR "/docs/scene-format.md").find("```\n" + list.output + "```"), std::string::npos)
+      << "docs/scene-format.md: paste the output of `accelbench gen --list` under Generators";
+  ASSERT_GE(scenes_gen::generator_names().size(), 6u);
+  for (const std::string& n : scenes_gen::generator_names()) {
+    EXPECT_NE(help.output.find(n), std::string::npos) << n << " missing from gen --help";
+    EXPECT_EQ(harness::parse_scene_item(n).name, n);
+  }
+}
+
 TEST(Registry, CommandLineListsEveryStructure) {
   const ProcessRun help = run(std::string(ACCELBENCH_CLI) + " render --help");
   ProcessRun list = run(std::string(ACCELBENCH_CLI) + " structures");

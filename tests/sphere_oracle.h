@@ -5,7 +5,7 @@
 // the naive loop's answer to every ray: the same primitive, a bit-equal t, the same any-hit.
 
 #include "accel/accel.h"
-#include "tracer/geometry.h"
+#include "tracer/scene_geometry.h"
 #include "tracer/intersector.h"
 
 #include <gtest/gtest.h>

@@ -7,7 +7,7 @@
 // with_intersector() dispatches once per render on (structure, kinds, counting), so each
 // combination's loops are compiled on their own, with no virtual call per node or primitive.
 
-#include "geometry.h"
+#include "scene_geometry.h"
 
 #include "accel/accel.h"
 

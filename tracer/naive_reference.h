@@ -4,7 +4,7 @@
 // Same queries, tie rules and primitive routines as Intersector, so in float it would give the
 // naive structure's answers exactly.
 
-#include "geometry.h"
+#include "scene_geometry.h"
 #include "intersector.h"
 #include "scalar.h"
 

@@ -2,7 +2,7 @@
 // A scene: camera, background, lights, materials, geometry and render settings.
 // Defaults are written here once; docs/scene-format.md documents them for the JSON format.
 
-#include "geometry.h"
+#include "scene_geometry.h"
 
 #include <glm/vec3.hpp>
 #include <nlohmann/json.hpp>

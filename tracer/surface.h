@@ -10,7 +10,7 @@
 // are barycentric, so the bound does not grow with the ray's length. Written once for the scalar
 // type T (float, double: tracer/scalar.h).
 
-#include "geometry.h"
+#include "scene_geometry.h"
 #include "intersector.h"
 #include "scalar.h"
 

@@ -1,7 +1,7 @@
 #pragma once
 // Normalising a direction read from a file, whatever its magnitude.
 
-#include "geometry.h"
+#include "scene_geometry.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "geometry.h"
+#include "scene_geometry.h"
 
 #include "rounding.h"
 
