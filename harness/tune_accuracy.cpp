@@ -5,6 +5,7 @@
 #include "harness/sweep_definition.h"
 #include "harness/sweep_results.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -23,6 +24,9 @@ struct Pool {
   std::string metric;
   std::vector<const json*> rows;
   std::vector<TimeError> points;
+  /// Per row, the floor of its reference in `metric`: the error the reference itself may carry,
+  /// below which a row's error cannot be told from the reference's (0 when not recorded).
+  std::vector<double> floors;
 };
 
 Pool pool_of(const json& results, const std::string& scene, const std::string& front, const std::string& flag) {
@@ -42,6 +46,8 @@ Pool pool_of(const json& results, const std::string& scene, const std::string& f
     if (!e.is_number()) continue;
     p.rows.push_back(&row);
     p.points.push_back({row["render_ms"]["median"].get<double>(), e.get<double>()});
+    const json floor = row.contains("reference") ? row["reference"].value("floor", json::object()) : json::object();
+    p.floors.push_back(floor.contains(p.metric) && floor[p.metric].is_number() ? floor[p.metric].get<double>() : 0.0);
   }
   if (!scene_seen) throw SweepError(flag + ": the results have no rows of scene '" + scene + "'");
   if (!front_seen) throw SweepError("--front: the results have no front '" + front + "' on scene '" + scene + "'");
@@ -77,10 +83,17 @@ std::string four_significant(double x) {
 AccuracyChoice choose_within_error(const json& results, const std::string& scene, double max_error,
                                    const std::string& front) {
   const Pool p = pool_of(results, scene, front, "--max-error");
+  // A budget below every reference's floor cannot be certified: the measured errors are not
+  // known to that precision. Rows whose own reference's floor lies above the budget are left
+  // out for the same reason.
+  const double lowest_floor = *std::min_element(p.floors.begin(), p.floors.end());
+  if (max_error < lowest_floor)
+    throw SweepError("--max-error: cannot certify an error below the reference floor " + four_significant(lowest_floor) +
+                     " (" + p.metric + " of " + scene + "'s references)");
   // Along the front, fastest first, errors fall: the first point within the budget is the
   // fastest configuration within it (nothing off the front is faster at no more error).
   for (std::size_t i : pareto_indices(p.points))
-    if (p.points[i].error <= max_error) return choice(p, scene, i);
+    if (p.points[i].error <= max_error && p.floors[i] <= max_error) return choice(p, scene, i);
   std::size_t best = 0;
   for (std::size_t i = 1; i < p.points.size(); ++i)
     if (p.points[i].error < p.points[best].error) best = i;

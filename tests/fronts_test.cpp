@@ -22,6 +22,7 @@
 #include <array>
 #include <cstdio>
 #include <cstdlib>
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -206,6 +207,25 @@ TEST(AccuracyTune, MaxErrorHonoursTheBudgetAndNothingFasterMeetsIt) {
     EXPECT_EQ(std::string(e.what()).rfind("--max-error: no configuration of s has rmse <= 0.001 (smallest: 0.01", 0), 0u)
         << e.what();
   }
+}
+
+// The tuner refuses a budget it cannot certify: below every reference's floor, one line naming
+// the floor; rows whose own reference's floor lies above the budget are not chosen.
+TEST(AccuracyTune, MaxErrorBelowTheReferenceFloorIsRefused) {
+  json results = hand_made_results();
+  try {
+    harness::choose_within_error(results, "s", 0.0005);
+    ADD_FAILURE() << "no error for a budget below the floor";
+  } catch (const harness::SweepError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "--max-error: cannot certify an error below the reference floor 0.001 (rmse of s's references)");
+  }
+  // The max_depth front's reference is coarse (floor 0.1): within 0.06, its 40 ms row (error
+  // 0.05) cannot be certified, so the slower spp row (60 ms, 0.01, floor 0.001) is chosen.
+  EXPECT_EQ(harness::choose_within_error(results, "s", 0.06).row["key"], "k3");
+  for (json& row : results["rows"])
+    if (row["front"] == "max_depth") row["reference"]["floor"]["rmse"] = 0.1;
+  EXPECT_EQ(harness::choose_within_error(results, "s", 0.06).row["key"], "k5");
 }
 
 TEST(AccuracyTune, MaxTimeGivesTheMostAccurateWithinIt) {
@@ -403,10 +423,17 @@ TEST(FrontsCli, TuneAnswersFromAFrontsFileOrSaysWhichBudgetNothingMeets) {
       fastest_key = row["key"];
     }
   EXPECT_EQ(choice["key"], fastest_key);
+  // A budget of 0 is below the reference's floor when the floor is above 0 (then the tuner
+  // cannot certify it), else no configuration meets it; one line either way.
+  const double floor = measured["rows"][0]["reference"]["floor"]["rmse"].get<double>();
   const CliRun none = accelbench("tune five --max-error 0 --fronts " + out);
   EXPECT_NE(none.status, 0);
-  EXPECT_EQ(none.output.rfind("accelbench: --max-error: no configuration of five has rmse <= 0 (smallest: ", 0), 0u)
+  EXPECT_EQ(none.output.rfind(floor > 0.0 ? "accelbench: --max-error: cannot certify an error below the reference floor "
+                                          : "accelbench: --max-error: no configuration of five has rmse <= 0 (smallest: ",
+                              0),
+            0u)
       << none.output;
+  EXPECT_EQ(std::count(none.output.begin(), none.output.end(), '\n'), 1) << none.output;
   fs::remove_all(dir);
 }
 
