@@ -10,7 +10,6 @@
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
-#include <filesystem>
 #include <memory>
 #include <string>
 
@@ -31,11 +30,7 @@ int run(const FrontsCliFlags& f) {
   const SweepDefinition d = fronts_definition(request);
   RunOptions o;
   std::tie(o.shard_index, o.shard_count) = parse_shard(f.shard_text);
-  o.out_path = f.out.empty() ? "results/" + d.name + ".json" : f.out;
-  if (o.shard_count > 1 && f.out.empty())
-    o.out_path = "results/" + d.name + ".shard" + std::to_string(o.shard_index) + "of" +
-                 std::to_string(o.shard_count) + ".json";
-  o.jsonl_path = f.jsonl.empty() ? std::filesystem::path(o.out_path).replace_extension(".jsonl").string() : f.jsonl;
+  set_output_paths(o, d.name, f.out, f.jsonl);
   o.resume = f.resume;
   o.progress = !f.quiet;
   ReferenceOptions ro = reference_options_from_flags(f.fronts);

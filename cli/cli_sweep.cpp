@@ -16,7 +16,6 @@
 
 #include <algorithm>
 #include <cstdio>
-#include <filesystem>
 #include <memory>
 #include <set>
 #include <string>
@@ -180,11 +179,7 @@ int run(const SweepFlags& f, const Hooks& hooks) {
       std::printf("%s\n", c.key.c_str());
     return 0;
   }
-  o.out_path = f.out.empty() ? "results/" + d.name + ".json" : f.out;
-  if (o.shard_count > 1 && f.out.empty())
-    o.out_path = "results/" + d.name + ".shard" + std::to_string(o.shard_index) + "of" +
-                 std::to_string(o.shard_count) + ".json";
-  o.jsonl_path = f.jsonl.empty() ? std::filesystem::path(o.out_path).replace_extension(".jsonl").string() : f.jsonl;
+  set_output_paths(o, d.name, f.out, f.jsonl);
   o.resume = f.resume;
   o.progress = !f.quiet;
   // One render thread stays on the CPU it starts on: moved between the two vCPUs of a VM, the

@@ -151,6 +151,13 @@ struct TimeBatch {
 
 }  // namespace
 
+void set_output_paths(RunOptions& o, const std::string& name, const std::string& out, const std::string& jsonl) {
+  o.out_path = out.empty() ? "results/" + name + ".json" : out;
+  if (o.shard_count > 1 && out.empty())
+    o.out_path = "results/" + name + ".shard" + std::to_string(o.shard_index) + "of" + std::to_string(o.shard_count) + ".json";
+  o.jsonl_path = jsonl.empty() ? std::filesystem::path(o.out_path).replace_extension(".jsonl").string() : jsonl;
+}
+
 RunSummary run_sweep(const SweepDefinition& definition, const RunOptions& options) {
   const auto t_start = Clock::now();
   RunSummary summary;

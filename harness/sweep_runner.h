@@ -47,6 +47,11 @@ struct RunSummary {
   double harness_fraction() const { return wall_s > 0 ? (wall_s - build_s - trace_s) / wall_s : 0.0; }
 };
 
+/// Sets where a run called `name` writes, from its shard: the results file `out`, else
+/// results/NAME.json (a shard of several: results/NAME.shardIofN.json), and the JSON Lines file
+/// `jsonl`, else the results file with the extension .jsonl.
+void set_output_paths(RunOptions& options, const std::string& name, const std::string& out, const std::string& jsonl);
+
 /// Runs the sweep. Throws SweepError for unusable files (e.g. --resume on another sweep's file).
 /// SIGINT and SIGTERM stop it cleanly after the batch being written (see RunOptions::after_row
 /// for how the tests stop it at a chosen row).
