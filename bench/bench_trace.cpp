@@ -81,7 +81,7 @@ constexpr int kTile = 4;
 void trace(const tracer::Geometry& geometry, const accel::AnyAccel& a, const std::vector<Ray>& rays,
            std::vector<Hit>& hits) {
   hits.resize(rays.size());
-  tracer::with_intersector(geometry, a, false, [&](const auto& isect) {
+  tracer::with_intersector(geometry, a, false, tracer::TriangleTest::Watertight, [&](const auto& isect) {
     for (std::size_t i = 0; i < rays.size(); ++i) hits[i] = isect.closest(rays[i]);
   });
 }
@@ -91,7 +91,7 @@ void trace(const tracer::Geometry& geometry, const accel::AnyAccel& a, const std
 void trace_packets(const tracer::Geometry& geometry, const accel::AnyAccel& a, const std::vector<Ray>& rays,
                    std::vector<Hit>& hits) {
   hits.resize(rays.size());
-  tracer::with_intersector(geometry, a, false, [&](const auto& isect) {
+  tracer::with_intersector(geometry, a, false, tracer::TriangleTest::Watertight, [&](const auto& isect) {
     constexpr std::size_t kPacket = std::decay_t<decltype(isect)>::kPacketMax;
     for (std::size_t i = 0; i < rays.size(); i += kPacket) {
       const std::size_t n = std::min(kPacket, rays.size() - i);
@@ -104,7 +104,7 @@ void trace_packets(const tracer::Geometry& geometry, const accel::AnyAccel& a, c
 void occlude(const tracer::Geometry& geometry, const accel::AnyAccel& a, const std::vector<Ray>& rays,
              std::vector<std::uint8_t>& blocked) {
   blocked.resize(rays.size());
-  tracer::with_intersector(geometry, a, false, [&](const auto& isect) {
+  tracer::with_intersector(geometry, a, false, tracer::TriangleTest::Watertight, [&](const auto& isect) {
     for (std::size_t i = 0; i < rays.size(); ++i) blocked[i] = isect.occluded(rays[i]);
   });
 }
@@ -157,7 +157,7 @@ std::vector<Ray> spawned_rays(const tracer::Geometry& g, const std::vector<Ray>&
   for (std::size_t i = 0; i < primary.size(); ++i) {
     if (!hits[i].found() || hits[i].is_plane() || hits[i].prim >= g.spheres.size()) continue;
     const Ray& r = primary[i];
-    const tracer::SurfacePoint sp = tracer::surface_point(g, r, hits[i]);
+    const tracer::SurfacePoint sp = tracer::surface_point(g, r, hits[i], tracer::TriangleTest::Watertight);
     const Vec3 n = sp.n_geo;
     Vec3 d;
     if (k++ % 2 == 0) {
@@ -178,7 +178,7 @@ std::vector<Ray> shadow_rays(const tracer::Scene& scene, const std::vector<Ray>&
   std::vector<Ray> out;
   for (std::size_t i = 0; i < primary.size(); ++i) {
     if (!hits[i].found() || hits[i].is_plane()) continue;
-    const tracer::SurfacePoint sp = tracer::surface_point(g, primary[i], hits[i]);
+    const tracer::SurfacePoint sp = tracer::surface_point(g, primary[i], hits[i], tracer::TriangleTest::Watertight);
     const Vec3 n = glm::dot(sp.n_geo, primary[i].dir) > 0.0f ? -sp.n_geo : sp.n_geo;
     const Vec3 origin = tracer::offset_ray_origin(sp, n);
     for (const tracer::PointLight& light : scene.lights)

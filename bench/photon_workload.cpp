@@ -33,13 +33,13 @@ PhotonWorkload cornell_photon_workload(std::size_t n_photons, int width, int hei
   w.emitted = pass.emitted;
 
   const tracer::PinholeCamera camera(scene.camera, width, height);
-  tracer::with_intersector(scene.geometry, structure, false, [&](const auto& isect) {
+  tracer::with_intersector(scene.geometry, structure, false, tracer::TriangleTest::Watertight, [&](const auto& isect) {
     for (int y = 0; y < height; ++y)
       for (int x = 0; x < width; ++x) {
         const accel::Ray ray = camera.primary_ray(x, y);
         const tracer::Hit hit = isect.closest(ray);
         if (!hit.found()) continue;
-        const tracer::SurfacePoint sp = tracer::surface_point(scene.geometry, ray, hit);
+        const tracer::SurfacePoint sp = tracer::surface_point(scene.geometry, ray, hit, tracer::TriangleTest::Watertight);
         const photon::MaterialRole role = photon::role_of(scene.materials[sp.material]);
         if (!role.diffuse || role.specular) continue;
         const photon::Vec3 n = glm::dot(ray.dir, sp.n_shade) <= 0.0f ? sp.n_shade : -sp.n_shade;

@@ -30,6 +30,7 @@ struct GenFlags {
   std::string out;
   std::string resolution;
   std::string seed = "1";
+  std::string model;
   int count = 0;
   int samples_per_pixel = 1;
   bool list = false;
@@ -49,17 +50,20 @@ int run_gen(const GenFlags& f) {
     throw std::runtime_error("-o: expected a .json file name, got '" + f.out + "'");
   scenes_gen::GenOptions options;
   options.seed = parse_seed(f.seed, "--seed");
-  if (f.count_opt->count()) {
-    // A scene file larger than the loader's limit could never be read back.
-    if (f.count > kMaxGenCount)
-      throw std::runtime_error("--count: gen writes scenes of at most " + std::to_string(kMaxGenCount) +
-                               " spheres (a larger file would pass the scene-file limit of " +
-                               input::byte_text(input::kMaxSceneFileBytes) + "), got " + std::to_string(f.count));
-    options.count = f.count;
-  }
+  if (f.count_opt->count()) options.count = f.count;
+  options.model = f.model;
   int width = 0, height = 0;
   if (!f.resolution.empty()) parse_image_size(f.resolution, "--resolution", width, height);
   tracer::Scene scene = scenes_gen::generate(f.name, options);
+  // A scene file larger than the loader's limit could never be read back. Mesh files are written
+  // as references, so only the primitives written one by one count.
+  std::uint64_t inline_primitives = scene.geometry.bounded_count();
+  for (const tracer::MeshInstance& m : scene.meshes) inline_primitives -= m.triangle_count;
+  if (inline_primitives > std::uint64_t(kMaxGenCount))
+    throw std::runtime_error("--count: gen writes scenes of at most " + std::to_string(kMaxGenCount) +
+                             " primitives written one by one (a larger file would pass the scene-file limit of " +
+                             input::byte_text(input::kMaxSceneFileBytes) + "); " + f.name + " made " +
+                             std::to_string(inline_primitives) + " (sweeps take the generator itself)");
   if (width) scene.camera.width = width, scene.camera.height = height;
 
   if (f.spp_opt->count()) scene.camera.samples_per_pixel = f.samples_per_pixel;
@@ -82,6 +86,9 @@ void add_gen_command(CLI::App& app, int& exit_code) {
   flags->count_opt =
       cmd->add_option("--count", flags->count, "Number of primitives, for generators that take one")
           ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--model", flags->model,
+                  "Model of the mesh generators: bunny, ogre, nefertiti, beast, igea, teapot, spot, fandisk, or a "
+                  "model file");
   cmd->add_option("--resolution", flags->resolution, "Image size WIDTHxHEIGHT stored in the scene");
   flags->spp_opt =
       cmd->add_option("--spp", flags->samples_per_pixel, "Samples per pixel stored in the scene")

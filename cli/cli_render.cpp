@@ -127,7 +127,7 @@ int run_render(const RenderFlags& f) {
   const nlohmann::json params = knob_params(f);
   integrator_overrides(f);  // its errors before the scene is read
 
-  tracer::Scene scene = tracer::load_scene_file(f.scene);
+  tracer::Scene scene = tracer::load_scene_file(f.scene, limits.max_memory_bytes);
   scene.geometry.force_mixed = f.dispatch == "mixed";
   options.limits = limits;
   const integrators::Setup setup = chosen_integrator(f, scene);
@@ -204,6 +204,7 @@ int run_render(const RenderFlags& f) {
         {"integrator", integrator.name},
         {"integrator_params", setup.params},
         {"integrator_stats", {{"timed", result.stats}, {"counting", counted.stats}}},
+        {"meshes", mesh_stats_json(scene)},
         {"dispatch",
          scene.geometry.kind_set() == tracer::KindSet::SpheresOnly ? "spheres_only" : "mixed"},
         {"threads", threads},

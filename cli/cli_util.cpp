@@ -1,4 +1,6 @@
 #include "cli/cli_util.h"
+#include "tracer/scene_mesh.h"
+#include "input/file_read.h"
 
 #include "accel/accel.h"
 #include "input/file_read.h"
@@ -88,6 +90,19 @@ void check_image_memory(int width, int height, std::uint64_t budget_bytes, const
                            ", over the memory budget of " + input::byte_text(budget) + " (25% of RAM; see --max-memory)");
 }
 
+nlohmann::json mesh_stats_json(const tracer::Scene& scene) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const tracer::MeshInstance& m : scene.meshes)
+    out.push_back({{"file", m.path},
+                   {"file_bytes", m.stats.file_bytes},
+                   {"vertices", m.stats.vertices},
+                   {"triangles", m.triangle_count},
+                   {"degenerate_dropped", m.stats.degenerate},
+                   {"triangle_bytes", std::uint64_t(m.triangle_count) *
+                                          (sizeof(tracer::Triangle) + sizeof(accel::Aabb))}});
+  return out;
+}
+
 std::string describe_scene(const tracer::Scene& scene) {
   const tracer::Geometry& g = scene.geometry;
   std::vector<std::string> parts;
@@ -103,6 +118,13 @@ std::string describe_scene(const tracer::Scene& scene) {
   std::string out;
   for (const std::string& p : parts) out += (out.empty() ? "" : ", ") + p;
   if (out.empty()) out = "no primitives";
+  if (!scene.meshes.empty()) {
+    std::uint64_t vertices = 0, degenerate = 0;
+    for (const tracer::MeshInstance& m : scene.meshes) vertices += m.stats.vertices, degenerate += m.stats.degenerate;
+    out += " (" + std::to_string(scene.meshes.size()) + (scene.meshes.size() == 1 ? " mesh file: " : " mesh files: ") +
+           std::to_string(vertices) + " vertices, " + std::to_string(degenerate) + " degenerate triangles dropped, " +
+           input::byte_text(tracer::triangle_bytes(g)) + " of triangles)";
+  }
   out += "; " + std::to_string(scene.lights.size()) +
          (scene.lights.size() == 1 ? " light, " : " lights, ") +
          std::to_string(scene.materials.size()) +

@@ -3,6 +3,8 @@
 
 #include "tracer/scene.h"
 
+#include <nlohmann/json.hpp>
+
 #include <cstdint>
 #include <string>
 
@@ -32,5 +34,8 @@ void check_image_memory(int width, int height, std::uint64_t budget_bytes, const
 /// One line: primitives by kind, lights and materials, e.g.
 /// "8000 spheres; 3 lights, 8 materials".
 std::string describe_scene(const tracer::Scene& scene);
+
+/// The scene's mesh files and what each held (--stats "meshes").
+nlohmann::json mesh_stats_json(const tracer::Scene& scene);
 
 }  // namespace cli

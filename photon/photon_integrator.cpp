@@ -209,10 +209,12 @@ void photon_check(const tracer::Scene& scene, const tracer::RenderOptions& optio
 const knobs::AnyKnobTable& photon_knobs() { return PhotonParams::knobs(); }
 
 tracer::RenderResult render_photon(const tracer::Scene& scene, const accel::AnyAccel& accel,
-                                   const tracer::RenderOptions& options,
+                                   const tracer::RenderOptions& given,
                                    const nlohmann::json& knobs) {
   const auto start = Clock::now();
   const PhotonParams params = knobs.get<PhotonParams>();
+  tracer::RenderOptions options = given;
+  options.triangle_test = params.triangle;
   const PhotonMaps maps = make_photon_maps(scene, accel, params, options);
   const double prepare_ms = ms_since(start);
 
@@ -299,6 +301,7 @@ PhotonMaps make_photon_maps(const tracer::Scene& scene, const accel::AnyAccel& a
   po.seed = params.seed;
   po.threads = options.threads;
   po.count_traversal = options.count_traversal;
+  po.triangle_test = options.triangle_test;
   po.uniform_fallback = !params.skip_unneeded_maps;
   const auto run = [&](PhotonPass pass, int target, PassResult& out, PhotonMap& map,
                        double& build_ms) {

@@ -83,7 +83,8 @@ const knobs::KnobTable<PhotonParams>& PhotonParams::knobs() {
                   "Seed of every random number of the photon paths and the final gather."),
        K::boolean("skip_unneeded_maps", &PhotonParams::skip_unneeded_maps,
                   "Trace only the maps the scene can use (no specular surface: no caustic map; no "
-                  "diffuse surface that reflects: no global map).")});
+                  "diffuse surface that reflects: no global map)."),
+       tracer::triangle_knob(&PhotonParams::triangle)});
   return table;
 }
 

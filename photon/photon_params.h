@@ -7,6 +7,8 @@
 #include "knn.h"
 #include "photon_tree_params.h"
 
+#include "tracer/triangle_test.h"
+
 #include <nlohmann/json.hpp>
 
 #include <cstdint>
@@ -50,6 +52,8 @@ struct PhotonParams {
   /// surface that reflects: no global map). false traces both, a caustic pass with nothing to
   /// aim at then emitting everywhere: what a tracer that does not check would spend.
   bool skip_unneeded_maps = true;
+  /// Ray/triangle routine of camera, shadow and photon rays.
+  tracer::TriangleTest triangle = tracer::TriangleTest::Watertight;
 
   /// The gather knobs of a map lookup, with the radius resolved to `radius` (world units).
   GatherParams gather(float radius) const;

@@ -82,7 +82,7 @@ class PhotonPathTracer {
       const tracer::Hit hit = isect_.closest(ray);
       if (!hit.found()) return;
       weight *= tracer::beer_transmittance(absorption, hit.t);
-      const tracer::SurfacePoint sp = tracer::surface_point(isect_.geometry(), ray, hit);
+      const tracer::SurfacePoint sp = tracer::surface_point(isect_.geometry(), ray, hit, isect_.triangle_test());
       const tracer::Material& m = scene_->materials[sp.material];
       const Vec3 d = glm::normalize(ray.dir);
       // Normals turned to the side the photon arrives from (as the Whitted integrator does).

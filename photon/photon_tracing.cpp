@@ -41,7 +41,7 @@ PassResult trace_photon_pass(const tracer::Scene& scene, const accel::AnyAccel& 
   std::uint64_t stores_made = 0; // stores of every traced path, dropped ones included
   bool done = false;
 
-  tracer::with_intersector(scene.geometry, accel, o.count_traversal, [&](const auto& base) {
+  tracer::with_intersector(scene.geometry, accel, o.count_traversal, o.triangle_test, [&](const auto& base) {
     using Isect = std::decay_t<decltype(base)>;
     while (!done) {
       if (next >= cap) {

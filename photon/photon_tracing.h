@@ -36,6 +36,7 @@ struct PassOptions {
   std::uint64_t seed = 1;                ///< Seed of every path's random numbers.
   int threads = 0;                       ///< Worker threads; 0 = every hardware thread.
   bool count_traversal = false;          ///< Gather the structure's TraversalCounters.
+  tracer::TriangleTest triangle_test = tracer::TriangleTest::Watertight;  ///< Ray/triangle routine.
   /// Paths at most; 0 = 256 per photon asked for, plus 65536.
   std::uint64_t max_emitted = 0;
   /// A caustic pass with no specular primitive to aim at emits into every direction instead of

@@ -109,9 +109,11 @@ struct PointState {
 };
 
 tracer::RenderResult render_ppm(const tracer::Scene& scene, const accel::AnyAccel& accel,
-                                const tracer::RenderOptions& options, const nlohmann::json& knobs) {
+                                const tracer::RenderOptions& given, const nlohmann::json& knobs) {
   const auto start = Clock::now();
   const PpmParams params = knobs.get<PpmParams>();
+  tracer::RenderOptions options = given;
+  options.triangle_test = params.triangle;
 
   // 1. Camera paths: the direct image and the visible points.
   std::deque<WorkerPoints> workers;  // one per worker; deque: pointers stay valid
@@ -163,6 +165,7 @@ tracer::RenderResult render_ppm(const tracer::Scene& scene, const accel::AnyAcce
       po.max_emitted = params.max_paths;
       po.seed = pass_seed;
       po.threads = options.threads;
+      po.triangle_test = options.triangle_test;
       PassResult traced = trace_photon_pass(lit, accel, po);
       trace_ms += traced.trace_ms;
       emitted += traced.emitted;
@@ -333,7 +336,8 @@ const knobs::KnobTable<PpmParams>& PpmParams::knobs() {
        K::integer("max_photon_depth", &PpmParams::max_photon_depth, 1, 1000, "bounces",
                   "Surface interactions per photon path before it is dropped."),
        K::integer(knobs::kSeedKnob, &PpmParams::seed, 0, ~0ull, "",
-                  "Seed of the photon paths; pass i draws from a seed of its own derived from it.")});
+                  "Seed of the photon paths; pass i draws from a seed of its own derived from it."),
+       tracer::triangle_knob(&PpmParams::triangle)});
   return table;
 }
 

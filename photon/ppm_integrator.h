@@ -49,6 +49,8 @@ struct PpmParams {
   int max_photon_depth = 64;
   /// Seed of the photon paths; pass i draws from a seed of its own derived from it.
   std::uint64_t seed = 1;
+  /// Ray/triangle routine of camera, shadow and photon rays.
+  tracer::TriangleTest triangle = tracer::TriangleTest::Watertight;
 
   /// The table (initial_radius as "auto" or its number; one-line errors such as "ppm: parameter
   /// 'passes' must be in [1, 1000000], got 0").

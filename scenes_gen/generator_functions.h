@@ -16,5 +16,8 @@ tracer::Scene make_ring(const GenOptions& options);         // photon_scenes.cpp
 tracer::Scene make_glass_caustic(const GenOptions& options);
 tracer::Scene make_cornell(const GenOptions& options);
 tracer::Scene make_furnace(const GenOptions& options);
+tracer::Scene make_mesh(const GenOptions& options);  // mesh_scenes.cpp
+tracer::Scene make_mesh_grid(const GenOptions& options);
+tracer::Scene make_tessellated_spheres(const GenOptions& options);
 
 }  // namespace scenes_gen

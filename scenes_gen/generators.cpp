@@ -13,6 +13,7 @@ struct Entry {
   std::string_view description;
   bool takes_count;  ///< Whether --count means something to this generator.
   tracer::Scene (*make)(const GenOptions&);
+  bool takes_model = false;  ///< Whether --model means something to this generator.
 };
 
 constexpr std::array kGenerators = {
@@ -33,6 +34,12 @@ constexpr std::array kGenerators = {
           false, make_furnace},
     Entry{"sphereflake", "SPD 'balls' sphereflake; --count is its size factor 0-6 (default 4: 7381 spheres)", true,
           make_sphereflake},
+    Entry{"mesh", "--model NAME: a standard model (bunny, ogre, nefertiti, beast, igea, teapot, spot, fandisk) or a "
+          "model file, framed on a floor", false, make_mesh, true},
+    Entry{"mesh_grid", "--count N triangles (default 1000000) of instanced copies of --model (default bunny), "
+          "flattened", true, make_mesh_grid, true},
+    Entry{"tessellated_spheres", "spheres8000 with each sphere an icosphere; --count is its subdivision level 0-3 "
+          "(default 1: 640,000 triangles)", true, make_tessellated_spheres},
 };
 
 const Entry* find(std::string_view name) {
@@ -52,6 +59,8 @@ tracer::Scene generate(std::string_view name, const GenOptions& options) {
   }
   if (options.count && !e->takes_count)
     throw GenError(std::string(name) + ": takes no count (it has a fixed size)");
+  if (!options.model.empty() && !e->takes_model)
+    throw GenError(std::string(name) + ": takes no model (only mesh and mesh_grid do)");
   if (options.count && (*options.count < 0 || *options.count > kMaxCount))
     throw GenError(std::string(name) + ": count must be in [0, " + std::to_string(kMaxCount) + "], got " +
                    std::to_string(*options.count));

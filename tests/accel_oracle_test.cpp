@@ -7,6 +7,7 @@
 #include "accel/isa.h"
 #include "tracer/scene_geometry.h"
 #include "tracer/intersector.h"
+#include "scenes_gen/closed_meshes.h"
 
 #include <gtest/gtest.h>
 
@@ -92,6 +93,21 @@ OracleScene make_scene(const std::string& kind, std::uint32_t seed) {
       c.height = 2.0f * radius(rng);
       g.cones.push_back(c);
     }
+  } else if (kind == "meshes") {
+    // Closed meshes whose neighbours share vertices exactly (rays through their shared edges and
+    // vertices test the watertight routine), with a long sliver and a soup of random triangles.
+    const auto place = [&](const tracer::MeshData& m, Vec3 at, float scale) {
+      for (const auto& t : m.triangles)
+        g.triangles.push_back({at + scale * m.vertices[t[0]], at + scale * m.vertices[t[1]],
+                               at + scale * m.vertices[t[2]], 0});
+    };
+    place(scenes_gen::icosphere(2), {-2.0f, 0.5f, 0.25f}, 2.5f);
+    place(scenes_gen::grid_cube(4), {2.5f, -1.0f, 0.5f}, 1.5f);
+    for (int i = 0; i < 80; ++i) {
+      const Vec3 p(u(rng), u(rng), u(rng));
+      g.triangles.push_back({p, p + Vec3(radius(rng), radius(rng), 0.0f), p + Vec3(0.0f, radius(rng), radius(rng)), 0});
+    }
+    g.triangles.push_back({{-5.0f, -4.0f, -4.0f}, {5.0f, 4.0f, 4.0f}, {5.0f, 4.01f, 4.0f}, 0});
   } else if (kind == "single") {
     add_sphere(g, {0.25f, 0.5f, -0.75f}, 1.0f);
   } else if (kind != "empty") {
@@ -262,6 +278,7 @@ struct Reference {
   std::size_t base = 0;
   std::vector<Hit> closest;
   std::vector<bool> occluded;
+  tracer::TriangleTest triangles_by = tracer::TriangleTest::Watertight;  ///< The routine of every trace.
 };
 
 template <class Intersector>
@@ -292,12 +309,14 @@ std::vector<Hit> trace_packets(const Intersector& isect, const std::vector<Ray>&
   return hits;
 }
 
-Reference reference_for(const tracer::Geometry& geometry, std::uint32_t seed) {
+Reference reference_for(const tracer::Geometry& geometry, std::uint32_t seed,
+                        tracer::TriangleTest triangles_by) {
   Reference ref;
+  ref.triangles_by = triangles_by;
   ref.rays = make_rays(geometry, seed);
   const accel::AnyAccel naive = accel::make_accel("naive", nullptr, geometry.primitive_bounds());
   auto run = [&] {
-    tracer::with_intersector(geometry, naive, false, [&](const auto& isect) {
+    tracer::with_intersector(geometry, naive, false, triangles_by, [&](const auto& isect) {
       trace_all(isect, ref.rays, ref.closest, ref.occluded);
     });
   };
@@ -320,7 +339,7 @@ int compare(const std::string& label, const tracer::Geometry& geometry, const ac
             const Reference& ref, bool counting) {
   std::vector<Hit> closest, packets;
   std::vector<bool> occluded, occluded_packets;
-  tracer::with_intersector(geometry, a, counting, [&](const auto& isect) {
+  tracer::with_intersector(geometry, a, counting, ref.triangles_by, [&](const auto& isect) {
     if constexpr (std::decay_t<decltype(isect)>::kCounting) {
       accel::TraversalCounters counters;
       trace_all(isect.with_counters(&counters), ref.rays, closest, occluded);
@@ -377,7 +396,7 @@ struct Agreement {
 Agreement agreement(const tracer::Geometry& geometry, const accel::AnyAccel& a, const Reference& ref) {
   std::vector<Hit> closest, packets;
   std::vector<bool> occluded, occluded_packets;
-  tracer::with_intersector(geometry, a, false, [&](const auto& isect) {
+  tracer::with_intersector(geometry, a, false, ref.triangles_by, [&](const auto& isect) {
     trace_all(isect, ref.rays, closest, occluded);
     packets = trace_packets(isect, ref.rays, occluded_packets);
   });
@@ -411,7 +430,11 @@ TEST_P(Oracle, EveryStructureAndKnobMatchesNaive) {
   const std::uint32_t seed = std::uint32_t(std::hash<std::string>{}(kind) & 0xffff);
   const OracleScene scene = make_scene(kind, seed);
   const std::vector<Aabb> boxes = scene.geometry.primitive_bounds();
-  const Reference ref = reference_for(scene.geometry, seed + 1);
+  // Every triangle routine: each structure must give naive's answers with either.
+  std::vector<Reference> refs{reference_for(scene.geometry, seed + 1, tracer::TriangleTest::Watertight)};
+  if (!scene.geometry.triangles.empty())
+    refs.push_back(reference_for(scene.geometry, seed + 1, tracer::TriangleTest::Moller));
+  const Reference& ref = refs.front();
   ASSERT_GT(ref.rays.size(), 500u);
 
   // A small budget keeps an exploding configuration (octree, `leaves`, deep) short; such a
@@ -455,7 +478,9 @@ TEST_P(Oracle, EveryStructureAndKnobMatchesNaive) {
         EXPECT_LE(g.max_rel_t, 1e-3) << label;
         continue;
       }
-      EXPECT_EQ(compare(label, scene.geometry, a, ref, false), 0) << label;
+      for (const Reference& r : refs)
+        EXPECT_EQ(compare(label + " triangle=" + tracer::triangle_test_name(r.triangles_by), scene.geometry, a, r, false), 0)
+            << label;
       // The counting instantiation is a different traversal; check it on part of the grid.
       if (configs % 7 == 1) {
         EXPECT_EQ(compare(label, scene.geometry, a, ref, true), 0) << label;
@@ -470,7 +495,7 @@ TEST_P(Oracle, EveryStructureAndKnobMatchesNaive) {
 
 INSTANTIATE_TEST_SUITE_P(Scenes, Oracle,
                          ::testing::Values("uniform", "clustered", "huge_among_tiny", "line",
-                                           "duplicates", "grid", "mixed", "single", "empty"),
+                                           "duplicates", "grid", "mixed", "meshes", "single", "empty"),
                          [](const ::testing::TestParamInfo<const char*>& scene) {
                            return std::string(scene.param);
                          });

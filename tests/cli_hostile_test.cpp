@@ -121,6 +121,8 @@ TEST_F(Hostile, ScenesAndSceneFiles) {
   fs::create_symlink("/dev/zero", dir_ / "zero.json");
   fs::create_symlink("/dev/urandom", dir_ / "random.nff");
   fs::create_directories(dir_ / "x.nff");
+  fs::create_directories(dir_ / "dir.obj");
+  write_text(dir_ / "empty.ply", "");
   ::mkfifo((dir_ / "fifo.json").c_str(), 0644);
   // Duplicate keys: "spheres": [] appended would have rendered an empty scene.
   std::string dup = read_text(dir_ / "five.json");
@@ -180,8 +182,21 @@ TEST_F(Hostile, ScenesAndSceneFiles) {
       {"an image that cannot fit (given budget)", "render five.json --resolution 65536x65536 --max-memory 1G",
        "accelbench: --max-memory: 1 GiB cannot hold the 65536x65536 image (108 GiB needed)"},
       {"gen: a billion spheres", "gen grid --count 1000000000 -o g.json",
-       "accelbench: --count: gen writes scenes of at most 1000000 spheres (a larger file would pass the "
-       "scene-file limit of 256 MiB), got 1000000000"},
+       "accelbench: grid: count must be in [0, 10000000], got 1000000000"},
+      {"gen: more spheres than a scene file holds", "gen grid --count 1000001 -o g.json",
+       "accelbench: --count: gen writes scenes of at most 1000000 primitives written one by one (a larger file "
+       "would pass the scene-file limit of 256 MiB); grid made 1000001 (sweeps take the generator itself)"},
+      {"gen: an unknown model", "gen mesh --model dragon -o m.json",
+       "accelbench: unknown model 'dragon' (known: bunny, ogre, nefertiti, beast, igea, teapot, spot, fandisk, or a "
+       "path to an .obj or .ply file)"},
+      {"gen: a model for a generator that takes none", "gen five --model bunny -o m.json",
+       "accelbench: five: takes no model (only mesh and mesh_grid do)"},
+      {"convert: a missing model", "convert missing.obj -o m.json", "accelbench: missing.obj: no such file"},
+      {"convert: a directory named like a model", "convert dir.obj -o m.json",
+       "accelbench: dir.obj: is a directory, not a regular mesh file"},
+      {"convert: an empty model", "convert empty.ply -o m.json", "accelbench: empty.ply: is empty"},
+      {"convert: a model of an unknown format", "convert model.xyz -o m.json",
+       "accelbench: model.xyz: unknown scene format '.xyz' (expected .json or .nff)"},
       {"gen: a negative seed", "gen five --seed -1 -o f.json",
        "accelbench: --seed: expected an integer in [0, 18446744073709551615], got '-1'"},
       {"gen: a seed past 2^64", "gen random --seed 18446744073709551616 -o f.json",

@@ -230,7 +230,7 @@ TEST(EmbreePoints, AgreesWithNaiveWithinItsToleranceAtEveryIsa) {
   for (int y = 0; y < 180; ++y)
     for (int x = 0; x < 240; ++x) rays.push_back(camera.primary_ray(x, y));
   std::vector<tracer::Hit> want(rays.size());
-  tracer::with_intersector(g, naive, false, [&](const auto& isect) {
+  tracer::with_intersector(g, naive, false, tracer::TriangleTest::Watertight, [&](const auto& isect) {
     for (std::size_t i = 0; i < rays.size(); ++i) want[i] = isect.closest(rays[i]);
   });
   std::mt19937 rng(20);
@@ -238,7 +238,7 @@ TEST(EmbreePoints, AgreesWithNaiveWithinItsToleranceAtEveryIsa) {
   const std::size_t camera_rays = rays.size();
   for (std::size_t i = 0; i < camera_rays; ++i) {
     if (!want[i].found()) continue;
-    const tracer::SurfacePoint sp = tracer::surface_point(g, rays[i], want[i]);
+    const tracer::SurfacePoint sp = tracer::surface_point(g, rays[i], want[i], tracer::TriangleTest::Watertight);
     Vec3 d = glm::normalize(Vec3(gauss(rng), gauss(rng), gauss(rng)));
     if (glm::dot(d, sp.n_geo) < 0.0f) d = -d;
     rays.push_back(tracer::spawn_ray(sp, d));
@@ -246,7 +246,7 @@ TEST(EmbreePoints, AgreesWithNaiveWithinItsToleranceAtEveryIsa) {
   }
   want.resize(rays.size());
   std::vector<bool> blocked(shadow.size());
-  tracer::with_intersector(g, naive, false, [&](const auto& isect) {
+  tracer::with_intersector(g, naive, false, tracer::TriangleTest::Watertight, [&](const auto& isect) {
     for (std::size_t i = camera_rays; i < rays.size(); ++i) want[i] = isect.closest(rays[i]);
     for (std::size_t i = 0; i < shadow.size(); ++i) blocked[i] = isect.occluded(shadow[i]);
   });
@@ -260,7 +260,7 @@ TEST(EmbreePoints, AgreesWithNaiveWithinItsToleranceAtEveryIsa) {
     ASSERT_TRUE(std::get<accel::EmbreePoints>(a).native());
     std::vector<tracer::Hit> single(rays.size()), packets(rays.size());
     std::vector<bool> occluded(shadow.size()), occluded_packets(shadow.size());
-    tracer::with_intersector(g, a, false, [&](const auto& isect) {
+    tracer::with_intersector(g, a, false, tracer::TriangleTest::Watertight, [&](const auto& isect) {
       for (std::size_t i = 0; i < rays.size(); ++i) single[i] = isect.closest(rays[i]);
       for (std::size_t i = 0; i < rays.size(); i += 16) {
         const std::size_t n = std::min<std::size_t>(16, rays.size() - i);

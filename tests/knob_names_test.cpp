@@ -76,6 +76,8 @@ const std::map<std::pair<std::string, std::string>, const char*>& not_the_knob()
       {{"harness/tune.cpp", "max_leaf_size"}, "one of the tuner's two axes (TunePoint), each a knob of every tree"},
       {{"bench/bench_trace.cpp", "max_depth"}, "an axis of the depth x leaf-size benchmark grid"},
       {{"bench/bench_trace.cpp", "max_leaf_size"}, "an axis of the depth x leaf-size benchmark grid"},
+      {{"tracer/scene_json.cpp", "triangle"}, "a scene file's triangle object, named in its messages"},
+      {{"cli/cli_util.cpp", "triangle"}, "the word for one triangle in a scene's description"},
   };
   return m;
 }

@@ -57,7 +57,7 @@ AcneCount count_acne(const Vec3& centre, OriginFn&& origin_of) {
   const tracer::Geometry g = far_mirrors(centre);
   const auto boxes = g.primitive_bounds();
   const accel::Naive naive(boxes);
-  const Isect isect(g, naive);
+  const Isect isect(g, naive, tracer::TriangleTest::Watertight);
   std::mt19937 rng(5);
   std::uniform_real_distribution<float> u(-45.0f, 45.0f);
   AcneCount count;
@@ -68,7 +68,7 @@ AcneCount count_acne(const Vec3& centre, OriginFn&& origin_of) {
     const Hit hit = isect.closest(ray);
     if (!hit.found()) continue;
     ++count.hits;
-    const SurfacePoint sp = tracer::surface_point(g, ray, hit);
+    const SurfacePoint sp = tracer::surface_point(g, ray, hit, tracer::TriangleTest::Watertight);
     const Vec3 n = glm::dot(ray.dir, sp.n_geo) < 0.0f ? sp.n_geo : -sp.n_geo;
     Ray refl;
     refl.org = origin_of(sp, n);

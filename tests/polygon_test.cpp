@@ -113,7 +113,7 @@ TEST(Polygon, MatchesTriangleAwayFromEdges) {
     r.org = Vec3(5.0f, u(rng), u(rng));
     r.dir = Vec3(-1.0f, 0.1f * u(rng), 0.1f * u(rng));
     float bu = 0, bv = 0;
-    const float tt = tracer::intersect_triangle(p0, p1, p2, r, &bu, &bv);
+    const float tt = tracer::watertight_distance<float>(p0, p1, p2, r, &bu, &bv);
     const float tp = tracer::intersect_polygon(tri, s.vertices.data(), r);
     if (hit(tt) && std::min({bu, bv, 1.0f - bu - bv}) < 1e-3f) continue;  // too near an edge
     ++checked;

@@ -160,8 +160,8 @@ template <bool Count = false, class Structure>
   using tracer::KindSet;
   const accel::Naive naive(g.primitive_bounds());
   accel::TraversalCounters counters;
-  const tracer::Intersector<KindSet::SpheresOnly, Count, Structure> isect(g, structure, &counters);
-  const tracer::Intersector<KindSet::SpheresOnly, false, accel::Naive> ref(g, naive);
+  const tracer::Intersector<KindSet::SpheresOnly, Count, Structure> isect(g, structure, tracer::TriangleTest::Watertight, &counters);
+  const tracer::Intersector<KindSet::SpheresOnly, false, accel::Naive> ref(g, naive, tracer::TriangleTest::Watertight);
   int bad = 0;
   std::string what;
   for (const Ray& r : rays) {

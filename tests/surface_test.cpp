@@ -164,7 +164,7 @@ tracer::HitT<tracer::ScalarOf<R>> first_hit(const tracer::Geometry& g, const R& 
     if (t < ray.tmax) hit = {t, Hit::kPlaneBit};
     return hit;
   }
-  const auto t = g.intersect_bounded(0, ray);
+  const auto t = g.intersect_bounded(0, ray, tracer::TriangleTest::Watertight);
   if (t < ray.tmax) hit = {t, 0};
   return hit;
 }
@@ -231,7 +231,7 @@ void check_kind(Kind kind, float magnitude, int primitives, int rays_each, Tally
       const auto hit = first_hit(s.g, ray);
       if (!hit.found()) continue;
       ++tally.hits;
-      const tracer::SurfacePointT<T> sp = tracer::surface_point(s.g, ray, hit);
+      const tracer::SurfacePointT<T> sp = tracer::surface_point(s.g, ray, hit, tracer::TriangleTest::Watertight);
       int axis = 0;
       T face_sign = T(1);
       for (int a = 0; a < 3; ++a)
@@ -309,7 +309,7 @@ TEST(ErrorBounds, SphereBoundIsAFewUlpsNotHundreds) {
   ray.dir = Vec3(0.0f, 0.0f, -1.0f);
   const Hit hit = first_hit(g, ray);
   ASSERT_TRUE(hit.found());
-  const tracer::SurfacePoint sp = tracer::surface_point(g, ray, hit);
+  const tracer::SurfacePoint sp = tracer::surface_point(g, ray, hit, tracer::TriangleTest::Watertight);
   const float offset = glm::length(tracer::offset_ray_origin(sp, sp.n_geo) - sp.p);
   EXPECT_GT(offset, 0.0f);
   EXPECT_LT(offset, 4.0f * 0.0078125f);

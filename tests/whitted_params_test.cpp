@@ -96,7 +96,7 @@ TEST(WhittedParams, SeedsGiveIndependentJitterAndStayDeterministic) {
 
 TEST(WhittedParams, ParamsSpellEveryKnob) {
   const json p = tracer::whitted_integrator().params(json::object());
-  EXPECT_EQ(p, json({{"max_depth", 0}, {"min_weight", -1.0}, {"spp", 0}, {"seed", 0}, {"precision", "float"}}));
+  EXPECT_EQ(p, json({{"max_depth", 0}, {"min_weight", -1.0}, {"spp", 0}, {"seed", 0}, {"precision", "float"}, {"triangle", "watertight"}}));
   EXPECT_EQ(tracer::whitted_integrator().params({{"max_depth", 7}})["max_depth"], 7);
 }
 

@@ -42,20 +42,20 @@ class Intersector {
   static constexpr bool kCounting = Count;
   using Scalar = float;  ///< The scalar type of its rays and hits.
 
-  Intersector(const Geometry& geometry, const Structure& structure,
+  Intersector(const Geometry& geometry, const Structure& structure, TriangleTest triangles_by,
               accel::TraversalCounters* counters = nullptr)
-      : geo_(&geometry), structure_(&structure), counters_(counters) {}
+      : geo_(&geometry), structure_(&structure), counters_(counters), tri_(triangles_by) {}
 
   /// The same intersector writing its counters elsewhere (one set per thread).
   Intersector with_counters(accel::TraversalCounters* counters) const {
-    return Intersector(*geo_, *structure_, counters);
+    return Intersector(*geo_, *structure_, tri_, counters);
   }
 
   /// Nearest hit in (ray.tmin, ray.tmax). Ties in t go to the lower id, so every structure
   /// reports the same primitive whatever order it visits them in.
   Hit closest(Ray ray) const {
     Hit hit = closest_plane(ray);
-    ClosestLeaf leaf{geo_, &hit};
+    ClosestLeaf leaf{geo_, tri_, &hit};
     structure_->template intersect<Count>(ray, leaf, counters_);
     return hit;
   }
@@ -75,11 +75,11 @@ class Intersector {
     if constexpr (requires(PacketLeaf& leaf) {
                     structure_->template intersect_packet<Count>(std::span<Ray>(packet, n), leaf, counters_);
                   }) {
-      PacketLeaf leaf{geo_, hits.data()};
+      PacketLeaf leaf{geo_, tri_, hits.data()};
       structure_->template intersect_packet<Count>(std::span<Ray>(packet, n), leaf, counters_);
     } else {
       for (std::size_t i = 0; i < n; ++i) {
-        ClosestLeaf leaf{geo_, &hits[i]};
+        ClosestLeaf leaf{geo_, tri_, &hits[i]};
         structure_->template intersect<Count>(packet[i], leaf, counters_);
       }
     }
@@ -88,7 +88,7 @@ class Intersector {
   /// True when anything lies in (ray.tmin, ray.tmax).
   bool occluded(const Ray& ray) const {
     if (occluded_by_plane(ray)) return true;
-    AnyLeaf leaf{geo_};
+    AnyLeaf leaf{geo_, tri_};
     return structure_->template occluded<Count>(ray, leaf, counters_);
   }
 
@@ -114,11 +114,11 @@ class Intersector {
     if constexpr (requires(PacketAnyLeaf& leaf) {
                     structure_->template occluded_packet<Count>(std::span<const Ray>(open, m), leaf, counters_);
                   }) {
-      PacketAnyLeaf leaf{geo_};
+      PacketAnyLeaf leaf{geo_, tri_};
       bits = structure_->template occluded_packet<Count>(std::span<const Ray>(open, m), leaf, counters_);
     } else {
       for (std::size_t k = 0; k < m; ++k) {
-        AnyLeaf leaf{geo_};
+        AnyLeaf leaf{geo_, tri_};
         if (structure_->template occluded<Count>(open[k], leaf, counters_)) bits |= 1u << k;
       }
     }
@@ -127,6 +127,8 @@ class Intersector {
   }
 
   const Geometry& geometry() const { return *geo_; }
+  /// The ray/triangle routine its leaf tests run (the render's `triangle` knob).
+  TriangleTest triangle_test() const { return tri_; }
 
  private:
   // The leaf functions of the traversal contract. accept() takes a t the structure computed
@@ -137,6 +139,7 @@ class Intersector {
   /// Closest hit: keeps the nearest, ties to the lower id.
   struct ClosestLeaf {
     const Geometry* geo;
+    TriangleTest tri;
     Hit* hit;
     bool keep(std::uint32_t id, float t, Ray& r) const {
       // Plane ids carry kPlaneBit, so at an exact tie a bounded primitive wins over a plane.
@@ -147,7 +150,7 @@ class Intersector {
       }
       return false;
     }
-    bool operator()(std::uint32_t id, Ray& r) const { return keep(id, geo->template intersect_bounded<Kinds>(id, r), r); }
+    bool operator()(std::uint32_t id, Ray& r) const { return keep(id, geo->template intersect_bounded<Kinds>(id, r, tri), r); }
     bool accept(std::uint32_t id, float t, Ray& r) const
       requires kSpheresOnly
     {
@@ -158,12 +161,13 @@ class Intersector {
   /// ClosestLeaf for the ray of each lane of a packet, writing hits[lane].
   struct PacketLeaf {
     const Geometry* geo;
+    TriangleTest tri;
     Hit* hits;
-    bool operator()(std::size_t lane, std::uint32_t id, Ray& r) const { return ClosestLeaf{geo, hits + lane}(id, r); }
+    bool operator()(std::size_t lane, std::uint32_t id, Ray& r) const { return ClosestLeaf{geo, tri, hits + lane}(id, r); }
     bool accept(std::size_t lane, std::uint32_t id, float t, Ray& r) const
       requires kSpheresOnly
     {
-      return ClosestLeaf{geo, hits + lane}.keep(id, t, r);
+      return ClosestLeaf{geo, tri, hits + lane}.keep(id, t, r);
     }
   };
 
@@ -190,7 +194,8 @@ class Intersector {
   /// Any hit: anything before tmax.
   struct AnyLeaf {
     const Geometry* geo;
-    bool operator()(std::uint32_t id, Ray& r) const { return geo->template intersect_bounded<Kinds>(id, r) < r.tmax; }
+    TriangleTest tri;
+    bool operator()(std::uint32_t id, Ray& r) const { return geo->template intersect_bounded<Kinds>(id, r, tri) < r.tmax; }
     bool accept(std::uint32_t, float t, Ray& r) const
       requires kSpheresOnly
     {
@@ -201,7 +206,8 @@ class Intersector {
   /// AnyLeaf for the ray of any lane of a packet.
   struct PacketAnyLeaf {
     const Geometry* geo;
-    bool operator()(std::size_t, std::uint32_t id, Ray& r) const { return AnyLeaf{geo}(id, r); }
+    TriangleTest tri;
+    bool operator()(std::size_t, std::uint32_t id, Ray& r) const { return AnyLeaf{geo, tri}(id, r); }
     bool accept(std::size_t, std::uint32_t, float t, Ray& r) const
       requires kSpheresOnly
     {
@@ -212,6 +218,7 @@ class Intersector {
   const Geometry* geo_;
   const Structure* structure_;
   accel::TraversalCounters* counters_;
+  TriangleTest tri_;
 };
 
 /// Gives a structure built over geometry.primitive_bounds() what it needs of the primitives
@@ -225,20 +232,21 @@ inline void attach_geometry(accel::AnyAccel& a, const Geometry& geometry) {
 }
 
 /// Calls fn(intersector) with the intersector specialised for this structure, this scene's kind
-/// set and the counting flag. Everything fn instantiates is compiled once per combination.
+/// set and the counting flag, testing triangles by `triangles_by`. Everything fn instantiates is
+/// compiled once per combination (the triangle routine is a predictable branch per test).
 template <class Fn>
 decltype(auto) with_intersector(const Geometry& geometry, const accel::AnyAccel& any,
-                                bool counting, Fn&& fn) {
+                                bool counting, TriangleTest triangles_by, Fn&& fn) {
   return std::visit(
       [&](const auto& structure) -> decltype(auto) {
         using S = std::decay_t<decltype(structure)>;
         const bool spheres_only = geometry.kind_set() == KindSet::SpheresOnly;
         if (counting) {
-          if (spheres_only) return fn(Intersector<KindSet::SpheresOnly, true, S>(geometry, structure));
-          return fn(Intersector<KindSet::Mixed, true, S>(geometry, structure));
+          if (spheres_only) return fn(Intersector<KindSet::SpheresOnly, true, S>(geometry, structure, triangles_by));
+          return fn(Intersector<KindSet::Mixed, true, S>(geometry, structure, triangles_by));
         }
-        if (spheres_only) return fn(Intersector<KindSet::SpheresOnly, false, S>(geometry, structure));
-        return fn(Intersector<KindSet::Mixed, false, S>(geometry, structure));
+        if (spheres_only) return fn(Intersector<KindSet::SpheresOnly, false, S>(geometry, structure, triangles_by));
+        return fn(Intersector<KindSet::Mixed, false, S>(geometry, structure, triangles_by));
       },
       any.variant());
 }

@@ -20,7 +20,8 @@ class NaiveReference {
   static constexpr bool kCounting = false;  ///< No traversal counters: there is no traversal.
   using Scalar = T;                         ///< The scalar type of its rays and hits.
 
-  explicit NaiveReference(const Geometry& geometry) : geo_(&geometry) {}
+  NaiveReference(const Geometry& geometry, TriangleTest triangles_by)
+      : geo_(&geometry), tri_(triangles_by) {}
 
   /// The same reference (it keeps no counters).
   NaiveReference with_counters(accel::TraversalCounters*) const { return *this; }
@@ -36,7 +37,7 @@ class NaiveReference {
       }
     }
     for (std::uint32_t id = 0, n = geo_->bounded_count(); id < n; ++id) {
-      const T t = geo_->intersect_bounded(id, ray);
+      const T t = geo_->intersect_bounded(id, ray, tri_);
       if (t < ray.tmax || (t == ray.tmax && t < kInfinityOf<T> && id < hit.prim)) {
         ray.tmax = t;
         hit = {t, id};
@@ -50,14 +51,17 @@ class NaiveReference {
     for (const Plane& pl : geo_->planes)
       if (intersect(pl, ray) < ray.tmax) return true;
     for (std::uint32_t id = 0, n = geo_->bounded_count(); id < n; ++id)
-      if (geo_->intersect_bounded(id, ray) < ray.tmax) return true;
+      if (geo_->intersect_bounded(id, ray, tri_) < ray.tmax) return true;
     return false;
   }
 
   const Geometry& geometry() const { return *geo_; }
+  /// The ray/triangle routine it runs (the render's `triangle` knob).
+  TriangleTest triangle_test() const { return tri_; }
 
  private:
   const Geometry* geo_;
+  TriangleTest tri_;
 };
 
 }  // namespace tracer

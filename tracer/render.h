@@ -39,6 +39,8 @@ struct RenderOptions {
   PixelWindow window;            ///< Part of the image to render; default: all of it.
   /// Memory budget of what an integrator builds per render (photon maps); default 25% of RAM.
   accel::BuildLimits limits;
+  /// The ray/triangle routine; each integrator sets it from its `triangle` knob.
+  TriangleTest triangle_test = TriangleTest::Watertight;
 };
 
 struct RenderResult {

@@ -238,7 +238,7 @@ RenderResult render_frame(const Scene& scene, const accel::AnyAccel& accel,
                           MakeTracer&& make_tracer) {
   return render_frame_detail::render_frame_with(
       scene, options, film,
-      [&](auto&& body) { with_intersector(scene.geometry, accel, options.count_traversal, body); },
+      [&](auto&& body) { with_intersector(scene.geometry, accel, options.count_traversal, options.triangle_test, body); },
       make_tracer);
 }
 
@@ -258,7 +258,7 @@ RenderResult render_frame_at(Precision precision, const Scene& scene, const acce
                              const RenderOptions& options, FilmSpec film,
                              MakeTracer&& make_tracer) {
   if (precision == Precision::Double)
-    return render_frame_on(scene, NaiveReference<double>(scene.geometry), options, film,
+    return render_frame_on(scene, NaiveReference<double>(scene.geometry, options.triangle_test), options, film,
                            make_tracer);
   return render_frame(scene, accel, options, film, make_tracer);
 }

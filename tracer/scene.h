@@ -2,6 +2,7 @@
 // A scene: camera, background, lights, materials, geometry and render settings.
 // Defaults are written here once; docs/scene-format.md documents them for the JSON format.
 
+#include "mesh_instance.h"
 #include "scene_geometry.h"
 
 #include <glm/vec3.hpp>
@@ -69,6 +70,8 @@ struct Scene {
   std::vector<PointLight> lights;
   std::vector<Material> materials;
   Geometry geometry;
+  /// The meshes read from model files; their triangles are in geometry.triangles.
+  std::vector<MeshInstance> meshes;
   RenderSettings render;
   IntegratorChoice integrator;  ///< Scene JSON "integrator"; the command line overrides it.
 };

@@ -68,15 +68,15 @@ struct Geometry {
   std::vector<accel::Aabb> primitive_bounds() const;
 
   /// Distance t > ray.tmin to bounded primitive `id`, or +inf, in the ray's scalar type (Ray:
-  /// float, RayD: double). Pure function of (id, org, dir, tmin), so every structure gets
-  /// bit-identical distances.
+  /// float, RayD: double), triangles by the routine `triangles_by`. Pure function of (id, org,
+  /// dir, tmin, routine), so every structure gets bit-identical distances.
   template <KindSet Kinds = KindSet::Mixed, class R = Ray>
-  ScalarOf<R> intersect_bounded(std::uint32_t id, const R& ray) const {
+  ScalarOf<R> intersect_bounded(std::uint32_t id, const R& ray, TriangleTest triangles_by) const {
     if constexpr (Kinds == KindSet::SpheresOnly) {
       return intersect(spheres[id], ray);
     } else {
       if (id < first_id[1]) return intersect(spheres[id], ray);
-      if (id < first_id[2]) return intersect(triangles[id - first_id[1]], ray);
+      if (id < first_id[2]) return intersect(triangles[id - first_id[1]], ray, triangles_by);
       if (id < first_id[3]) return intersect(boxes[id - first_id[2]], ray);
       if (id < first_id[4]) return intersect(cones[id - first_id[3]], ray);
       return intersect_polygon(polygons[id - first_id[4]], polygon_vertices.data(), ray);

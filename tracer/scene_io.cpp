@@ -28,14 +28,18 @@ std::string read_scene_text(const std::string& path) {
   }
 }
 
+std::string folder_of(const std::string& path) {
+  return std::filesystem::path(path).parent_path().string();
+}
+
 }  // namespace
 
-Scene load_scene_file(const std::string& path) {
+Scene load_scene_file(const std::string& path, std::uint64_t max_memory_bytes) {
   const std::string ext = lower_extension(path);
   if (ext == ".json") {
     const std::string text = read_scene_text(path);
     try {
-      return parse_scene_json(text);
+      return parse_scene_json(text, {folder_of(path), max_memory_bytes});
     } catch (const SceneError& e) {
       throw SceneError(path + ": " + e.what());
     }
@@ -49,9 +53,18 @@ void save_scene_file(const Scene& scene, const std::string& path) {
   if (ext != ".json") throw SceneError(path + ": scenes are written as .json, not '" + ext + "'");
   // The text is read back before it is written: a scene the loader would refuse is never saved
   // (a conversion that loses a rule of the scene model fails here, naming what is wrong).
-  const std::string text = scene_to_json(scene).dump(1) + '\n';
+  nlohmann::json doc = scene_to_json(scene);
+  // Mesh files are referred to relative to the saved scene's folder, so the two move together.
+  if (doc.contains("meshes")) {
+    const std::filesystem::path folder = std::filesystem::absolute(folder_of(path));
+    for (nlohmann::json& m : doc["meshes"]) {
+      const std::filesystem::path file = std::filesystem::absolute(m["file"].get<std::string>());
+      m["file"] = file.lexically_relative(folder).string();
+    }
+  }
+  const std::string text = doc.dump(1) + '\n';
   try {
-    parse_scene_json(text);
+    parse_scene_json(text, {folder_of(path), 0});
   } catch (const SceneError& e) {
     throw SceneError(path + ": not written: the scene would not load back: " + e.what());
   }

@@ -1,5 +1,6 @@
 #include "scene_json.h"
 
+#include "scene_mesh.h"
 #include "unit_vector.h"
 
 #include "input/json_read.h"
@@ -8,6 +9,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <filesystem>
 #include <limits>
 #include <map>
 #include <string>
@@ -393,9 +395,51 @@ void read_triangle(const json& v, const std::string& path, const MaterialIndex& 
   g.triangles.push_back(t);
 }
 
-void read_mesh(const json& v, const std::string& path, const MaterialIndex& mats, Geometry& g) {
-  const Object o(v, path, {"vertices", "indices", "normals", "material"}, "mesh");
+MeshTransform read_mesh_transform(const json& v, const std::string& path) {
+  const Object o(v, path, {"translate", "rotate", "scale"}, "transform");
+  MeshTransform t;
+  if (o.has("translate")) t.translate = glm::dvec3(read_vec3(o["translate"], o.path("translate")));
+  if (o.has("rotate")) t.rotate = glm::dvec3(read_vec3(o["rotate"], o.path("rotate")));
+  if (o.has("scale")) {
+    const json& s = o["scale"];
+    t.scale = s.is_number() ? glm::dvec3(double(read_float(s, o.path("scale"))))
+                            : glm::dvec3(read_vec3(s, o.path("scale")));
+    for (int a = 0; a < 3; ++a)
+      if (t.scale[a] == 0.0) fail(o.path("scale"), "must be non-zero on every axis, got " + show(s));
+  }
+  return t;
+}
+
+/// A mesh from a model file, placed by its transform, appended to the triangles.
+void read_mesh_file(const Object& o, std::uint32_t material, const SceneReadContext& context, Scene& scene) {
+  for (const char* inline_key : {"vertices", "indices", "normals"})
+    if (o.has(inline_key))
+      fail(o.path(inline_key), "a mesh has either \"file\" or inline vertices and indices, not both");
+  const std::string file = read_string(o["file"], o.path("file"));
+  if (file.empty()) fail(o.path("file"), "must be a path to a model file, got \"\"");
+  const std::filesystem::path p(file);
+  MeshInstance m;
+  m.path = (p.is_absolute() || context.base_dir.empty() ? p : std::filesystem::path(context.base_dir) / p)
+               .lexically_normal()
+               .string();
+  if (o.has("transform")) m.transform = read_mesh_transform(o["transform"], o.path("transform"));
+  m.material = material;
+  MeshData mesh;
+  try {
+    mesh = load_mesh_file(m.path, context.max_memory_bytes);
+  } catch (const SceneError& e) {
+    fail(o.path("file"), e.what());
+  }
+  add_mesh(scene, mesh, std::move(m));
+}
+
+void read_mesh(const json& v, const std::string& path, const MaterialIndex& mats, const SceneReadContext& context,
+               Scene& scene) {
+  Geometry& g = scene.geometry;
+  const Object o(v, path, {"file", "transform", "vertices", "indices", "normals", "material"}, "mesh");
   const std::uint32_t material = mats.lookup(o);
+  if (o.has("file")) return read_mesh_file(o, material, context, scene);
+  if (o.has("transform")) fail(o.path("transform"), "applies to a mesh read from a \"file\" only");
   const json& vs = read_array(o.require("vertices"), o.path("vertices"));
   std::vector<Vec3> points(vs.size());
   for (std::size_t i = 0; i < vs.size(); ++i)
@@ -526,7 +570,7 @@ json material_json(const Material& m) {
 
 // ---------------------------------------------------------------------------------------------
 
-Scene scene_from_json(const json& doc) {
+Scene scene_from_json(const json& doc, const SceneReadContext& context) {
   const Object top(doc, "", kTopKeys, "scene");
   Scene scene;
   if (top.has("camera")) scene.camera = read_camera(top["camera"], "/camera");
@@ -596,7 +640,7 @@ Scene scene_from_json(const json& doc) {
   for_each_element(doc, "triangles",
                    [&](const json& v, const std::string& p) { read_triangle(v, p, mats, g); });
   for_each_element(doc, "meshes",
-                   [&](const json& v, const std::string& p) { read_mesh(v, p, mats, g); });
+                   [&](const json& v, const std::string& p) { read_mesh(v, p, mats, context, scene); });
   for_each_element(doc, "cones",
                    [&](const json& v, const std::string& p) { read_cone(v, p, mats, g); });
   for_each_element(doc, "polygons",
@@ -611,14 +655,14 @@ Scene scene_from_json(const json& doc) {
   return scene;
 }
 
-Scene parse_scene_json(std::string_view text) {
+Scene parse_scene_json(std::string_view text, const SceneReadContext& context) {
   json doc;
   try {
     doc = input::parse_json(text);
   } catch (const input::InputError& e) {
     throw SceneError(e.what());
   }
-  return scene_from_json(doc);
+  return scene_from_json(doc, context);
 }
 
 json scene_to_json(const Scene& scene) {
@@ -664,8 +708,27 @@ json scene_to_json(const Scene& scene) {
   j["boxes"] = json::array();
   for (const Box& b : g.boxes)
     j["boxes"].push_back({{"min", vec(b.lo)}, {"max", vec(b.hi)}, {"material", mat(b.material)}});
+  // A mesh read from a file is written as its reference (the file's path as the loader opened
+  // it; save_scene_file makes it relative to the saved scene), not as its triangles.
+  std::vector<bool> from_file(g.triangles.size(), false);
+  if (!scene.meshes.empty()) {
+    j["meshes"] = json::array();
+    for (const MeshInstance& m : scene.meshes) {
+      std::fill(from_file.begin() + m.first_triangle, from_file.begin() + m.first_triangle + m.triangle_count, true);
+      json mj = {{"file", m.path}, {"material", mat(m.material)}};
+      if (!m.transform.is_identity()) {
+        const auto v3 = [](const glm::dvec3& v) { return vec(Vec3(v)); };
+        mj["transform"] = {{"translate", v3(m.transform.translate)},
+                           {"rotate", v3(m.transform.rotate)},
+                           {"scale", v3(m.transform.scale)}};
+      }
+      j["meshes"].push_back(std::move(mj));
+    }
+  }
   j["triangles"] = json::array();
-  for (const Triangle& t : g.triangles) {
+  for (std::size_t i = 0; i < g.triangles.size(); ++i) {
+    if (from_file[i]) continue;
+    const Triangle& t = g.triangles[i];
     json tj = {{"vertices", {vec(t.p0), vec(t.p1), vec(t.p2)}}, {"material", mat(t.material)}};
     if (t.normals >= 0) {
       const Vec3* n = &g.vertex_normals.at(std::size_t(t.normals));

@@ -13,14 +13,21 @@
 
 namespace tracer {
 
+/// Where a scene's model files are found, and how much memory loading them may take.
+struct SceneReadContext {
+  std::string base_dir;                ///< Folder that mesh "file" paths are relative to; "" = the working folder.
+  std::uint64_t max_memory_bytes = 0;  ///< --max-memory budget for loading a mesh; 0 = 25% of RAM.
+};
+
 /// Builds and validates a scene from parsed JSON; throws SceneError. Meshes are expanded into
-/// triangles, and geometry.finalize() has been called on the result.
-Scene scene_from_json(const nlohmann::json& doc);
+/// triangles (model files read through load_mesh_file), and geometry.finalize() has been called
+/// on the result.
+Scene scene_from_json(const nlohmann::json& doc, const SceneReadContext& context = {});
 
 /// Parses JSON text (input::parse_json: nesting limit, duplicate keys refused) and builds the
 /// scene; syntax errors also name the JSON pointer and the line where they occur (and a NaN or
 /// Infinity literal is reported as a non-finite number there).
-Scene parse_scene_json(std::string_view text);
+Scene parse_scene_json(std::string_view text, const SceneReadContext& context = {});
 
 /// Every key of the scene, defaults included, as scene_from_json reads it back: load, save and
 /// load again gives an identical scene (floats are written in their shortest exact form).

@@ -14,6 +14,8 @@ Vec3 scaled(const Vec3& p, double factor) { return Vec3(glm::dvec3(p) * factor);
 
 template <class Fn>
 void for_each_position(Scene& scene, Fn&& fn) {
+  // Moved triangles no longer match their model files: a saved copy writes them out in full.
+  scene.meshes.clear();
   scene.camera.position = fn(scene.camera.position);
   scene.camera.look_at = fn(scene.camera.look_at);
   for (PointLight& l : scene.lights) l.position = fn(l.position);

@@ -113,7 +113,7 @@ class SpdTracer {
     const Geometry& geo = isect_.geometry();
     Shading h;
     SurfacePointT<Scalar>& sp = h.sp;
-    sp = surface_point(geo, ray, hit);
+    sp = surface_point(geo, ray, hit, isect_.triangle_test());
     // A sphere of negative radius shows its inside: its normal points inwards.
     if (!hit.is_plane() && geo.kind_of(hit.prim) == PrimitiveKind::Sphere &&
         geo.spheres[hit.prim].radius < 0.0f) {
@@ -195,13 +195,14 @@ class SpdTracer {
   float intensity_;
 };
 
-/// The SPD integrator's one knob.
+/// The SPD integrator's knobs.
 struct SpdParams {
   Precision precision = Precision::Float;  ///< Arithmetic of the whole tracer.
+  TriangleTest triangle = TriangleTest::Watertight;  ///< Ray/triangle routine.
 
   static const knobs::KnobTable<SpdParams>& knobs() {
     static const knobs::KnobTable<SpdParams> table(
-        "spd", {precision_knob(&SpdParams::precision)});
+        "spd", {precision_knob(&SpdParams::precision), triangle_knob(&SpdParams::triangle)});
     return table;
   }
 };
@@ -211,7 +212,10 @@ RenderResult render_spd(const Scene& scene, const accel::AnyAccel& accel,
   std::vector<NffSurface> surfaces;
   surfaces.reserve(scene.materials.size());
   for (const Material& m : scene.materials) surfaces.push_back(nff_surface(m));
-  return render_frame_at(SpdParams::knobs().from_json(params).precision, scene, accel, options, FilmSampling::PixelCorners,
+  const SpdParams p = SpdParams::knobs().from_json(params);
+  RenderOptions o = options;
+  o.triangle_test = p.triangle;
+  return render_frame_at(p.precision, scene, accel, o, FilmSampling::PixelCorners,
                          [&scene, &surfaces](const auto& isect) {
                            return SpdTracer<std::decay_t<decltype(isect)>>(scene, isect, surfaces);
                          });

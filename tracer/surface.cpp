@@ -58,24 +58,28 @@ SurfacePointT<T> on_sphere(const Sphere& s, const RayT<T>& ray, T t) {
 }
 
 template <class T>
-SurfacePointT<T> on_triangle(const Geometry& g, const Triangle& tri, const RayT<T>& ray) {
+SurfacePointT<T> on_triangle(const Geometry& g, const Triangle& tri, const RayT<T>& ray,
+                             TriangleTest test) {
   SurfacePointT<T> sp;
   const Vec3T<T> p0(tri.p0), p1(tri.p1), p2(tri.p2);
   T u = T(0), v = T(0);
-  triangle_distance<T>(p0, p1, p2, ray, &u, &v);
+  triangle_distance<T>(test, p0, p1, p2, ray, &u, &v);
   const T w = T(1) - u - v;
   // p0 + (u e1 + v e2): within an ulp of |p| plus a few of |u e1| + |v e2| of the plane, where
   // the barycentric w p0 + u p1 + v p2 is a few ulps of every |p_i| off.
   const Vec3T<T> e1 = p1 - p0, e2 = p2 - p0;
   sp.p = p0 + (u * e1 + v * e2);
-  // The least offset at which Moller-Trumbore surely tells the sides apart: its t carries a few
-  // ulps of |p - p0| |e1| |e2| / |e1 x e2|, the edge over the sine of the corner angle.
+  // Moller-Trumbore needs a further offset before it surely tells the sides apart: its t carries
+  // a few ulps of |p - p0| |e1| |e2| / |e1 x e2|, the edge over the sine of the corner angle. The
+  // watertight test needs none: it keeps a hit only where its t is surely positive.
   const glm::dvec3 d1 = glm::dvec3(tri.p1) - glm::dvec3(tri.p0);
   const glm::dvec3 d2 = glm::dvec3(tri.p2) - glm::dvec3(tri.p0);
   const glm::dvec3 normal = glm::cross(d1, d2);
   const double area2 = glm::length(normal);
   const double l1 = glm::length(d1), l2 = glm::length(d2);
-  const double robust = area2 > 0.0 ? double(gamma<T>(9)) * std::max(l1, l2) * l1 * l2 / area2 : 0.0;
+  const double robust = area2 > 0.0 && test == TriangleTest::Moller
+                            ? double(gamma<T>(9)) * std::max(l1, l2) * l1 * l2 / area2
+                            : 0.0;
   T along;
   if constexpr (std::is_same_v<T, float>) {
     const glm::dvec3 dp = glm::dvec3(sp.p) - glm::dvec3(tri.p0);
@@ -257,14 +261,15 @@ SurfacePointT<T> on_polygon(const Geometry& g, const Polygon& poly, const RayT<T
 }
 
 template <class T>
-SurfacePointT<T> surface_point_of(const Geometry& g, const RayT<T>& ray, const HitT<T>& hit) {
+SurfacePointT<T> surface_point_of(const Geometry& g, const RayT<T>& ray, const HitT<T>& hit,
+                                  TriangleTest triangles_by) {
   if (hit.is_plane()) return on_plane<T>(g.planes[hit.prim & ~HitT<T>::kPlaneBit], ray, hit.t);
   const std::uint32_t id = hit.prim;
   switch (g.kind_of(id)) {
     case PrimitiveKind::Sphere:
       return on_sphere<T>(g.spheres[id - g.first_id[0]], ray, hit.t);
     case PrimitiveKind::Triangle:
-      return on_triangle<T>(g, g.triangles[id - g.first_id[1]], ray);
+      return on_triangle<T>(g, g.triangles[id - g.first_id[1]], ray, triangles_by);
     case PrimitiveKind::Box:
       return on_box<T>(g.boxes[id - g.first_id[2]], ray, hit.t);
     case PrimitiveKind::Cone:
@@ -279,12 +284,12 @@ SurfacePointT<T> surface_point_of(const Geometry& g, const RayT<T>& ray, const H
 
 }  // namespace
 
-SurfacePoint surface_point(const Geometry& g, const Ray& ray, const Hit& hit) {
-  return surface_point_of<float>(g, ray, hit);
+SurfacePoint surface_point(const Geometry& g, const Ray& ray, const Hit& hit, TriangleTest triangles_by) {
+  return surface_point_of<float>(g, ray, hit, triangles_by);
 }
 
-SurfacePointD surface_point(const Geometry& g, const RayD& ray, const HitD& hit) {
-  return surface_point_of<double>(g, ray, hit);
+SurfacePointD surface_point(const Geometry& g, const RayD& ray, const HitD& hit, TriangleTest triangles_by) {
+  return surface_point_of<double>(g, ray, hit, triangles_by);
 }
 
 }  // namespace tracer

@@ -29,9 +29,10 @@ struct SurfacePointT {
 using SurfacePoint = SurfacePointT<float>;
 using SurfacePointD = SurfacePointT<double>;
 
-/// The surface point of `hit` (which must be found()) on the ray it came from.
-SurfacePoint surface_point(const Geometry& geometry, const Ray& ray, const Hit& hit);
+/// The surface point of `hit` (which must be found()) on the ray it came from; a triangle's by
+/// the routine that found the hit.
+SurfacePoint surface_point(const Geometry& geometry, const Ray& ray, const Hit& hit, TriangleTest triangles_by);
 /// The same in double precision (the naive reference).
-SurfacePointD surface_point(const Geometry& geometry, const RayD& ray, const HitD& hit);
+SurfacePointD surface_point(const Geometry& geometry, const RayD& ray, const HitD& hit, TriangleTest triangles_by);
 
 }  // namespace tracer

@@ -41,7 +41,9 @@ RenderResult render_whitted(const Scene& scene, const accel::AnyAccel& accel,
   const WhittedParams p = WhittedParams::knobs().from_json(knobs);
   const RenderSettings limits = p.limits(scene);
   const int spp = p.samples_per_pixel(scene);
-  RenderResult r = render_frame_at(p.precision, scene, accel, options,
+  RenderOptions o = options;
+  o.triangle_test = p.triangle;
+  RenderResult r = render_frame_at(p.precision, scene, accel, o,
                                    FilmSpec(FilmSampling::PixelSamples, spp, p.seed),
                                    [&scene, &limits](const auto& isect) {
                                      return Whitted<std::decay_t<decltype(isect)>>(scene, isect,

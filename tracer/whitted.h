@@ -123,7 +123,7 @@ class Whitted {
 
     const Color attenuation = beer_transmittance(absorption, float(hit.t));
     const Color weight = throughput * attenuation;
-    const Point sp = surface_point(isect_.geometry(), ray, hit);
+    const Point sp = surface_point(isect_.geometry(), ray, hit, isect_.triangle_test());
     const Material& m = scene_->materials[sp.material];
     // Normals turned to the side the ray arrives from.
     const bool front = glm::dot(ray.dir, sp.n_geo) <= Scalar(0);

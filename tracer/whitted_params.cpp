@@ -45,7 +45,11 @@ const knobs::KnobTable<WhittedParams>& WhittedParams::knobs() {
        K::integer(knobs::kSeedKnob, &WhittedParams::seed, 0, ~0ull, "",
                   "Seed of the sub-pixel jitter; 0 = the fixed pattern of every earlier render."),
        precision_knob(&WhittedParams::precision)
-           .front({R"(["float", "double"])", "", R"({"precision": "double"})", "", false})});
+           .front({R"(["float", "double"])", "", R"({"precision": "double"})", "", false}),
+       // moller's error against the watertight render at the front's other knobs: the light
+       // that leaks through shared edges.
+       triangle_knob(&WhittedParams::triangle)
+           .front({R"(["moller", "watertight"])", "", R"({"triangle": "watertight"})", "", false})});
   return table;
 }
 

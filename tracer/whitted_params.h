@@ -27,6 +27,8 @@ struct WhittedParams {
   /// the naive loop over every primitive in double (the float renderer's reference,
   /// tracer/naive_reference.h; the structure is not used).
   Precision precision = Precision::Float;
+  /// Ray/triangle routine: watertight, or Moller-Trumbore (faster, can leak through edges).
+  TriangleTest triangle = TriangleTest::Watertight;
 
   /// The recursion limits of `scene` with the knobs given here applied.
   RenderSettings limits(const Scene& scene) const;

@@ -1,0 +1,147 @@
+// The ray/triangle routines (tracer/triangle.h): watertight agrees with Moller-Trumbore away from
+// edges, and a closed mesh never lets a watertight ray out, even when the ray is aimed exactly at
+// a shared edge or vertex. Moller-Trumbore's count of escaped rays on the same rays is printed.
+
+#include "scenes_gen/closed_meshes.h"
+#include "tracer/intersector.h"
+#include "tracer/scene_geometry.h"
+#include "tracer/triangle.h"
+
+#include "accel/accel.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <map>
+#include <random>
+
+namespace {
+
+using accel::Ray;
+using accel::Vec3;
+using tracer::TriangleTest;
+
+constexpr float kInf = accel::kInfinity;
+
+TEST(Triangle, WatertightAgreesWithMollerAwayFromEdges) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  int compared = 0;
+  for (int i = 0; i < 20000; ++i) {
+    const Vec3 p0(u(rng), u(rng), u(rng)), p1(u(rng), u(rng), u(rng)), p2(u(rng), u(rng), u(rng));
+    Ray r;
+    r.org = Vec3(u(rng), u(rng), u(rng)) * 3.0f;
+    r.dir = Vec3(u(rng), u(rng), u(rng));
+    float mu = 0, mv = 0, wu = 0, wv = 0;
+    const float tm = tracer::moller_distance<float>(p0, p1, p2, r, &mu, &mv);
+    const float tw = tracer::watertight_distance<float>(p0, p1, p2, r, &wu, &wv);
+    const float edge = std::min({mu, mv, 1.0f - mu - mv});
+    if (tm < kInf && edge < 1e-3f) continue;  // near an edge: either may decide
+    if (tm < kInf && tm < 1e-3f) continue;    // at the origin: the watertight bound on t decides
+    ++compared;
+    ASSERT_EQ(tm < kInf, tw < kInf) << "ray " << i;
+    if (tm < kInf) {
+      EXPECT_NEAR(tw, tm, 1e-4f * tm) << "ray " << i;
+      EXPECT_NEAR(wu, mu, 1e-4f) << "ray " << i;
+      EXPECT_NEAR(wv, mv, 1e-4f) << "ray " << i;
+    }
+  }
+  EXPECT_GT(compared, 19000);
+}
+
+TEST(Triangle, DoubleRoutinesAgreeWithFloatOnes) {
+  const glm::dvec3 p0(0, 0, 0), p1(1, 0, 0), p2(0, 1, 0);
+  tracer::RayD r;
+  r.org = {0.25, 0.25, 2.0};
+  r.dir = {0.0, 0.0, -1.0};
+  double u = 0, v = 0;
+  EXPECT_DOUBLE_EQ(tracer::watertight_distance<double>(p0, p1, p2, r, &u, &v), 2.0);
+  EXPECT_DOUBLE_EQ(u, 0.25);
+  EXPECT_DOUBLE_EQ(v, 0.25);
+  EXPECT_DOUBLE_EQ(tracer::moller_distance<double>(p0, p1, p2, r), 2.0);
+}
+
+TEST(Triangle, DegenerateAndParallelAreNeverHit) {
+  Ray r;
+  r.org = Vec3(0.2f, 0.2f, 1.0f);
+  r.dir = Vec3(0.0f, 0.0f, -1.0f);
+  for (const TriangleTest t : {TriangleTest::Watertight, TriangleTest::Moller}) {
+    // Collinear vertices, a repeated vertex, and a triangle containing the ray.
+    EXPECT_EQ(tracer::triangle_distance<float>(t, Vec3(0), Vec3(1, 1, 0), Vec3(2, 2, 0), r), kInf);
+    EXPECT_EQ(tracer::triangle_distance<float>(t, Vec3(0), Vec3(0), Vec3(1, 0, 0), r), kInf);
+    EXPECT_EQ(tracer::triangle_distance<float>(t, Vec3(0.2f, 0.2f, 0), Vec3(0.2f, 0.2f, 2), Vec3(1, 0, 0), r), kInf);
+  }
+}
+
+/// Rays from points inside a closed mesh aimed exactly at its shared vertices and at points on
+/// its shared edges; counts those that hit nothing (escaped through the surface).
+std::uint64_t escapes(const tracer::MeshData& mesh, float inside, TriangleTest test, std::uint64_t rays,
+                      std::uint32_t seed) {
+  tracer::Geometry g;
+  for (const auto& t : mesh.triangles)
+    g.triangles.push_back({mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]], 0});
+  g.finalize();
+  const accel::AnyAccel bvh = accel::make_accel("bvh8", nullptr, g.primitive_bounds());
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> u(-inside, inside), s(0.0f, 1.0f);
+  std::uniform_int_distribution<std::size_t> pick(0, mesh.triangles.size() - 1);
+  std::uniform_int_distribution<int> corner(0, 2);
+  std::uint64_t out = 0;
+  tracer::with_intersector(g, bvh, false, test, [&](const auto& isect) {
+    for (std::uint64_t i = 0; i < rays; ++i) {
+      const auto& t = mesh.triangles[pick(rng)];
+      const int c = corner(rng);
+      const Vec3 a = mesh.vertices[t[std::size_t(c)]], b = mesh.vertices[t[std::size_t((c + 1) % 3)]];
+      // Half the rays at a vertex, half at a point of an edge (rounded to float: just on one
+      // side of the exact edge or the other, which is where a test that decides each triangle
+      // alone lets rays through).
+      const Vec3 target = (i & 1) ? a : a + s(rng) * (b - a);
+      Ray r;
+      r.org = Vec3(u(rng), u(rng), u(rng));
+      r.dir = target - r.org;
+      if (!isect.closest(r).found()) ++out;
+    }
+  });
+  return out;
+}
+
+struct ClosedMesh {
+  const char* name;
+  tracer::MeshData mesh;
+  float inside;  ///< Half the side of the cube of ray origins, all inside the mesh.
+};
+
+TEST(Triangle, ClosedMeshesNeverLeakWatertightRays) {
+  const ClosedMesh meshes[] = {{"icosphere(4)", scenes_gen::icosphere(4), 0.5f},
+                               {"grid cube 24x24 per face, seen from inside", scenes_gen::grid_cube(24), 0.9f}};
+  constexpr std::uint64_t kRays = 5'000'000;  // per mesh: 10^7 in all
+  for (const ClosedMesh& m : meshes) {
+    const std::uint64_t watertight = escapes(m.mesh, m.inside, TriangleTest::Watertight, kRays, 11);
+    const std::uint64_t moller = escapes(m.mesh, m.inside, TriangleTest::Moller, kRays, 11);
+    std::printf("%s: %llu rays at shared edges and vertices: watertight %llu escaped, moller %llu escaped\n", m.name,
+                static_cast<unsigned long long>(kRays), static_cast<unsigned long long>(watertight),
+                static_cast<unsigned long long>(moller));
+    RecordProperty(std::string(m.name) + " moller escaped", std::to_string(moller));
+    EXPECT_EQ(watertight, 0u) << m.name;
+  }
+}
+
+TEST(Triangle, ClosedMeshesAreClosedAndOutward) {
+  for (const tracer::MeshData& m : {scenes_gen::icosphere(3), scenes_gen::grid_cube(5)}) {
+    // Every edge is shared by exactly two triangles, in opposite directions.
+    std::map<std::pair<std::uint32_t, std::uint32_t>, int> edges;
+    for (const auto& t : m.triangles)
+      for (int k = 0; k < 3; ++k) ++edges[{t[std::size_t(k)], t[std::size_t((k + 1) % 3)]}];
+    for (const auto& [e, n] : edges) {
+      EXPECT_EQ(n, 1);
+      EXPECT_EQ(edges.count({e.second, e.first}), 1u);
+    }
+    for (const auto& t : m.triangles) {
+      const glm::dvec3 a(m.vertices[t[0]]), b(m.vertices[t[1]]), c(m.vertices[t[2]]);
+      EXPECT_GT(glm::dot(glm::cross(b - a, c - a), a + b + c), 0.0) << "a triangle faces inward";
+    }
+  }
+  EXPECT_EQ(scenes_gen::icosphere(3).triangles.size(), scenes_gen::icosphere_triangles(3));
+}
+
+}  // namespace
