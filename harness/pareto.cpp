@@ -30,12 +30,16 @@ std::vector<std::size_t> sorted_usable(std::span<const TimeError> points) {
 
 bool dominates(const TimeError& q, const TimeError& p) {
   if (!usable(q) || !usable(p)) return false;
+  if (!q.resolved && p.resolved) return false;
   return q.time <= p.time && q.error <= p.error && (q.time < p.time || q.error < p.error);
 }
 
-std::vector<bool> pareto_front(std::span<const TimeError> points) {
-  std::vector<bool> on(points.size(), false);
-  const std::vector<std::size_t> order = sorted_usable(points);
+namespace {
+
+/// Marks in `on` the points of `order` (usable indices sorted as by sorted_usable) whose
+/// resolved flag is `resolved` and that no point of `order` beats on time and error.
+void mark_front(std::span<const TimeError> points, const std::vector<std::size_t>& order, bool resolved,
+                std::vector<bool>& on) {
   // Sweep by time. `best` is the smallest error among strictly faster points; within a group of
   // equal times only the smallest error can be on the front, and only if it beats `best`.
   double best = std::numeric_limits<double>::infinity();
@@ -44,10 +48,25 @@ std::vector<bool> pareto_front(std::span<const TimeError> points) {
     while (end < order.size() && points[order[end]].time == points[order[g]].time) ++end;
     const double group_min = points[order[g]].error;  // sorted by error within the group
     if (group_min < best)
-      for (std::size_t k = g; k < end && points[order[k]].error == group_min; ++k) on[order[k]] = true;
+      for (std::size_t k = g; k < end && points[order[k]].error == group_min; ++k)
+        if (points[order[k]].resolved == resolved) on[order[k]] = true;
     best = std::min(best, group_min);
     g = end;
   }
+}
+
+}  // namespace
+
+std::vector<bool> pareto_front(std::span<const TimeError> points) {
+  std::vector<bool> on(points.size(), false);
+  const std::vector<std::size_t> order = sorted_usable(points);
+  // An unresolved point may be dominated by any point: the front of all of them decides it. A
+  // resolved point may be dominated only by resolved ones: the front of those alone decides it.
+  mark_front(points, order, false, on);
+  std::vector<std::size_t> resolved;
+  for (std::size_t i : order)
+    if (points[i].resolved) resolved.push_back(i);
+  mark_front(points, resolved, true, on);
   return on;
 }
 
