@@ -55,8 +55,6 @@ json bias_variance_json(const tracer::BiasVariance& bv, bool stochastic) {
 
 }  // namespace
 
-const char* metric_name(FrontMetric m) { return m == FrontMetric::Rmse ? "rmse" : "rel_mse"; }
-
 json to_json(const FrontsSettings& s) {
   return {{"groups", s.groups},
           {"fixed", s.fixed},

@@ -6,6 +6,7 @@
 // shards, validation against naive and timing are the sweep's (docs/accuracy.md).
 
 #include "harness/accuracy_reference.h"
+#include "harness/front_metric.h"
 #include "harness/sweep_definition.h"
 #include "harness/sweep_measure.h"
 #include "harness/sweep_runner.h"
@@ -18,12 +19,6 @@
 #include <vector>
 
 namespace harness {
-
-/// The error metric a front is drawn and tuned on.
-enum class FrontMetric { Rmse, RelMse };
-
-/// "rmse" or "rel_mse".
-const char* metric_name(FrontMetric m);
 
 /// What fronts add to a sweep definition (kept in SweepDefinition::fronts).
 struct FrontsSettings {
