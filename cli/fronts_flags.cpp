@@ -236,8 +236,8 @@ void print_fronts(const json& results, std::FILE* out) {
     std::fprintf(out, "\n%s, front %s: reference %s %s, floor %s %.3g\n", scene.c_str(), name.c_str(),
                  ref["integrator"].get<std::string>().c_str(), ref["params"].dump().c_str(), metric.c_str(),
                  front["floor"].get<double>());
-    std::fprintf(out, "  %-28s %12s %12s %12s %12s  %s\n", "knobs", "render ms", metric.c_str(), "bias", "noise",
-                 "front");
+    std::fprintf(out, "  %-28s %12s %12s %12s %12s %9s  %s\n", "knobs", "render ms", metric.c_str(), "bias", "noise",
+                 "resolved", "front");
     for (const json& row : results["rows"]) {
       if (row.value("scene", "") != scene || row.value("front", "") != name) continue;
       std::string knobs = row.value("integrator_params", json::object()).dump();
@@ -249,9 +249,10 @@ void print_fronts(const json& results, std::FILE* out) {
         else std::snprintf(buf, sizeof buf, "-");
         return std::string(buf);
       };
-      std::fprintf(out, "  %-28s %12.3f %12s %12s %12s  %s\n", knobs.c_str(),
+      std::fprintf(out, "  %-28s %12.3f %12s %12s %12s %9s  %s\n", knobs.c_str(),
                    row["render_ms"]["median"].get<double>(), num(e).c_str(), num(bv.value("bias", json())).c_str(),
-                   num(bv.value("noise", json())).c_str(), row.value("on_front", false) ? "*" : "");
+                   num(bv.value("noise", json())).c_str(), row.value("resolved", true) ? "yes" : "no",
+                   row.value("on_front", false) ? "*" : "");
     }
   }
 }

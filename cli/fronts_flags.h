@@ -51,7 +51,8 @@ ReferenceOptions reference_options_from_flags(const FrontsFlags& flags);
 std::vector<nlohmann::json> parse_knob_values_text(const std::string& text, const std::string& flag);
 
 /// A fronts results file as text tables, one per scene and front: each point's knobs, median
-/// render time, error, bias and noise, '*' on the Pareto front.
+/// render time, error, bias and noise, whether the reference resolves its error, '*' on the
+/// Pareto front.
 void print_fronts(const nlohmann::json& results, std::FILE* out);
 
 }  // namespace cli

@@ -1,6 +1,7 @@
 #include "harness/fronts.h"
 
 #include "harness/accuracy_knobs.h"
+#include "harness/error_interval.h"
 #include "integrators/integrators.h"
 #include "harness/pareto.h"
 #include "harness/sweep_results.h"
@@ -40,6 +41,27 @@ json error_json(const tracer::ImageError& e) {
           {"mean_bias", finite_or_null(e.mean_bias)},
           {"max_abs", finite_or_null(e.max_abs)},
           {"non_finite", e.non_finite}};
+}
+
+/// A metric value of a results row: null (a non-finite render) reads as infinite.
+double number_or_infinity(const json& v) {
+  return v.is_number() ? v.get<double>() : std::numeric_limits<double>::infinity();
+}
+
+/// The errors of a row's seeds in `metric`, the timed image's first (empty when the row has no
+/// seed renders: a deterministic reference, or rows written before seed errors were recorded).
+std::vector<double> seed_errors(const json& row, const char* metric) {
+  std::vector<double> out;
+  if (!row.contains("seed_errors") || !row["seed_errors"].contains(metric)) return out;
+  for (const json& e : row["seed_errors"][metric]) out.push_back(number_or_infinity(e));
+  return out;
+}
+
+/// The floor of a row's reference in the front's metric (0 when not recorded).
+double row_floor(const json& row, const char* floor_key) {
+  if (!row.contains("reference") || !row["reference"].contains("floor")) return 0.0;
+  const json& f = row["reference"]["floor"];
+  return f.contains(floor_key) && f[floor_key].is_number() ? f[floor_key].get<double>() : 0.0;
 }
 
 json bias_variance_json(const tracer::BiasVariance& bv, bool stochastic) {
@@ -280,6 +302,10 @@ void FrontsInspector::operator()(const tracer::Scene& scene, const accel::AnyAcc
     const std::uint64_t base = timed.value(knobs::kSeedKnob, std::uint64_t(0));
     tracer::PixelMoments moments;
     moments.add(image);
+    // Each seed's own error, the timed image's first: their spread is the point's seed noise
+    // (harness/error_interval.h), recomputed wherever fronts are annotated (merge included).
+    json seed_rmse = json::array({finite_or_null(err.rmse)});
+    json seed_rel_mse = json::array({finite_or_null(err.rel_mse)});
     bool stochastic = true;
     tracer::RenderOptions ro;
     ro.threads = mo.threads;
@@ -296,9 +322,13 @@ void FrontsInspector::operator()(const tracer::Scene& scene, const accel::AnyAcc
         break;
       }
       moments.add(r.image);
+      const tracer::ImageError e = tracer::image_error(r.image, ref.image, settings_.epsilon);
+      seed_rmse.push_back(finite_or_null(e.rmse));
+      seed_rel_mse.push_back(finite_or_null(e.rel_mse));
     }
     if (stochastic) {
       m.extra["bias_variance"] = bias_variance_json(tracer::bias_variance(moments, ref.image), true);
+      m.extra["seed_errors"] = {{"rmse", seed_rmse}, {"rel_mse", seed_rel_mse}};
     } else {
       tracer::BiasVariance bv;
       bv.seeds = 1;
@@ -323,6 +353,8 @@ void annotate_fronts(json& results) {
   for (std::size_t i = 0; i < rows.size(); ++i) {
     json& row = rows[i];
     row.erase("on_front");
+    row.erase("error_interval");
+    row.erase("resolved");
     if (row.value("status", "") != "ok" || !row.contains("front") || !row.contains("error")) continue;
     const auto id = std::make_pair(row["scene"].get<std::string>(), row["front"].get<std::string>());
     if (!members.count(id)) order.push_back(id);
@@ -332,10 +364,16 @@ void annotate_fronts(json& results) {
   for (const auto& id : order) {
     const std::vector<std::size_t>& idx = members[id];
     std::vector<TimeError> points;
+    std::size_t unresolved = 0;
     for (std::size_t i : idx) {
-      const json& e = rows[i]["error"][metric];
-      points.push_back({rows[i]["render_ms"]["median"].get<double>(),
-                        e.is_number() ? e.get<double>() : std::numeric_limits<double>::infinity()});
+      json& row = rows[i];
+      const double error = number_or_infinity(row["error"][metric]);
+      const ErrorInterval interval =
+          error_interval(seed_spread(error, seed_errors(row, metric)), row_floor(row, floor_key), settings.metric);
+      row["error_interval"] = json::array({finite_or_null(interval.lo), finite_or_null(interval.hi)});
+      row["resolved"] = interval.resolved;
+      unresolved += !interval.resolved;
+      points.push_back({row["render_ms"]["median"].get<double>(), error, interval.resolved});
     }
     const std::vector<bool> on = pareto_front(points);
     json pareto = json::array();
@@ -345,7 +383,8 @@ void annotate_fronts(json& results) {
       pareto.push_back({{"key", row["key"]},
                         {"integrator_params", row.value("integrator_params", json::object())},
                         {"render_ms", points[k].time},
-                        {"error", points[k].error}});
+                        {"error", points[k].error},
+                        {"resolved", points[k].resolved}});
     }
     for (std::size_t k = 0; k < idx.size(); ++k) {
       rows[idx[k]]["on_front"] = bool(on[k]);
@@ -362,7 +401,8 @@ void annotate_fronts(json& results) {
                   {"pareto", pareto},
                   {"reference", ref},
                   {"floor", floor},
-                  {"smallest_error", finite_or_null(smallest)}};
+                  {"smallest_error", finite_or_null(smallest)},
+                  {"unresolved", unresolved}};
     // How far the smallest error on the front lies above the reference's own error.
     entry["floor_ratio"] = floor > 0.0 && std::isfinite(smallest) ? json(smallest / floor) : json(nullptr);
     fronts.push_back(std::move(entry));

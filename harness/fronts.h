@@ -105,6 +105,9 @@ class FrontsInspector {
 /// Marks the fronts in a results document of a fronts sweep: for every scene and group, the ok
 /// rows' (median render time, error) points, their Pareto front (rows get "on_front"), the
 /// reference's floor and the ratio of the smallest non-zero error to it, in results["fronts"].
+/// Every row gets its error's interval and whether the reference resolves it
+/// (harness/error_interval.h: "error_interval", "resolved"), every front the count of its
+/// unresolved points ("unresolved"); unresolved points dominate only unresolved points.
 void annotate_fronts(nlohmann::json& results);
 
 /// What a fronts run did.

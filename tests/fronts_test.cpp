@@ -255,6 +255,88 @@ TEST(Fronts, AnnotationMarksExactlyTheNonDominatedRows) {
   EXPECT_DOUBLE_EQ(results["fronts"][0]["floor_ratio"].get<double>(), 50.0);
 }
 
+/// Hand-made fronts results of one spp front whose reference has floor 0.01 RMSE (1e-4 relative
+/// MSE): rows (key, ms, rmse, the seeds' rmse).
+json floor_results(const std::vector<std::tuple<std::string, double, double, std::vector<double>>>& points) {
+  json rows = json::array();
+  for (const auto& [key, ms, err, seeds] : points) {
+    json row = {{"key", key},
+                {"scene", "s"},
+                {"status", "ok"},
+                {"front", "spp"},
+                {"integrator_params", {{"spp", int(ms)}}},
+                {"render_ms", {{"median", ms}}},
+                {"error", {{"rmse", err}, {"rel_mse", err * err}}},
+                {"reference", {{"floor", {{"rmse", 0.01}, {"rel_mse", 1e-4}}}}}};
+    if (!seeds.empty()) {
+      json rel = json::array();
+      for (double e : seeds) rel.push_back(e * e);
+      row["seed_errors"] = {{"rmse", seeds}, {"rel_mse", rel}};
+    }
+    rows.push_back(row);
+  }
+  harness::FrontsSettings s;
+  s.groups = {{"spp"}};
+  return {{"sweep", {{"fronts", harness::to_json(s)}}}, {"rows", rows}};
+}
+
+// Every row gets its error's interval (the seeds' spread widened by the floor) and whether it is
+// resolved; an unresolved row does not push a resolved one off the front.
+TEST(Fronts, RowsCarryAnErrorIntervalAndUnresolvedRowsDoNotBeatResolvedOnes) {
+  json results = floor_results({
+      {"far", 10, 0.5, {}},                                 // resolved: [0.49, 0.51]
+      {"noisy", 20, 0.015, {0.015, 0.02, 0.012, 0.018}},   // unresolved: [0.002, 0.03]
+      {"resolved", 30, 0.05, {0.05, 0.045, 0.055, 0.05}},  // resolved: [0.035, 0.065]
+      {"at_floor", 40, 0.01, {}},                           // unresolved: [0, 0.02]
+      {"below", 50, 0.005, {}},                             // unresolved: [0, 0.015]
+  });
+  harness::annotate_fronts(results);
+  std::map<std::string, json> row;
+  for (const json& r : results["rows"]) row[r["key"]] = r;
+  auto near = [](const json& interval, double lo, double hi) {
+    EXPECT_NEAR(interval[0].get<double>(), lo, 1e-12) << interval;
+    EXPECT_NEAR(interval[1].get<double>(), hi, 1e-12) << interval;
+  };
+  near(row["far"]["error_interval"], 0.49, 0.51);
+  near(row["noisy"]["error_interval"], 0.002, 0.03);
+  near(row["resolved"]["error_interval"], 0.035, 0.065);
+  near(row["at_floor"]["error_interval"], 0.0, 0.02);
+  near(row["below"]["error_interval"], 0.0, 0.015);
+  EXPECT_TRUE(row["far"]["resolved"].get<bool>());
+  EXPECT_FALSE(row["noisy"]["resolved"].get<bool>());
+  EXPECT_TRUE(row["resolved"]["resolved"].get<bool>());
+  EXPECT_FALSE(row["at_floor"]["resolved"].get<bool>());
+  EXPECT_FALSE(row["below"]["resolved"].get<bool>());
+  // The unresolved 20 ms row is faster and measured more accurate than the resolved 30 ms one,
+  // which the plain rule would drop; it stays. The unresolved rows beat each other as before.
+  EXPECT_TRUE(row["resolved"]["on_front"].get<bool>());
+  EXPECT_TRUE(row["noisy"]["on_front"].get<bool>());
+  EXPECT_TRUE(row["at_floor"]["on_front"].get<bool>());
+  EXPECT_TRUE(row["below"]["on_front"].get<bool>());
+  const json& front = results["fronts"][0];
+  EXPECT_EQ(front["unresolved"], 3);
+  EXPECT_DOUBLE_EQ(front["floor_ratio"].get<double>(), 0.5);  // 0.005 over 0.01
+  ASSERT_EQ(front["pareto"].size(), 5u);
+  EXPECT_EQ(front["pareto"][2]["key"], "resolved");
+  EXPECT_EQ(front["pareto"][2]["resolved"], true);
+  EXPECT_EQ(front["pareto"][1]["resolved"], false);
+  // Annotating again (as merge does) gives the same document.
+  json again = results;
+  harness::annotate_fronts(again);
+  EXPECT_EQ(again, results);
+
+  // In relative MSE the floor adds in the square roots: 0.015^2 with the seeds' spread gives
+  // [(0.012 - 0.01)^2, (0.02 + 0.01)^2], the same rows unresolved.
+  results["sweep"]["fronts"]["metric"] = "rel_mse";
+  harness::annotate_fronts(results);
+  for (const json& r : results["rows"]) row[r["key"]] = r;
+  near(row["noisy"]["error_interval"], 0.002 * 0.002, 0.03 * 0.03);
+  near(row["far"]["error_interval"], 0.49 * 0.49, 0.51 * 0.51);
+  EXPECT_FALSE(row["noisy"]["resolved"].get<bool>());
+  EXPECT_TRUE(row["resolved"]["resolved"].get<bool>());
+  EXPECT_EQ(results["fronts"][0]["unresolved"], 3);
+}
+
 TEST(Fronts, RunEndToEndWithCachedReferencesAndResume) {
   const fs::path dir = temp_dir("run");
   const harness::SweepDefinition d = harness::fronts_definition(small_request());
@@ -278,6 +360,28 @@ TEST(Fronts, RunEndToEndWithCachedReferencesAndResume) {
       EXPECT_FALSE(row.contains("bias_variance"));  // a deterministic reference: no split
     }
   }
+  // Every row carries its error's interval and whether the reference resolves it; the spp rows
+  // that vary with the seed carry each seed's error, the timed image's first.
+  std::size_t unresolved = 0;
+  for (const json& row : results["rows"]) {
+    ASSERT_TRUE(row.contains("error_interval") && row.contains("resolved")) << row.dump();
+    const double err = row["error"]["rmse"], floor = row["reference"]["floor"]["rmse"];
+    const double lo = row["error_interval"][0], hi = row["error_interval"][1];
+    EXPECT_LE(lo, err);
+    EXPECT_GE(hi, err + floor * (1 - 1e-12));
+    EXPECT_EQ(row["resolved"].get<bool>(), lo > floor);
+    unresolved += !row["resolved"].get<bool>();
+    const bool seeded = row.contains("bias_variance") && row["bias_variance"]["stochastic"].get<bool>();
+    EXPECT_EQ(row.contains("seed_errors"), seeded) << row.dump();
+    if (seeded) {
+      ASSERT_EQ(row["seed_errors"]["rmse"].size(), 3u);  // --seeds 3
+      EXPECT_EQ(row["seed_errors"]["rmse"][0], row["error"]["rmse"]);
+      EXPECT_EQ(row["seed_errors"]["rel_mse"][0], row["error"]["rel_mse"]);
+    }
+  }
+  std::size_t counted = 0;
+  for (const json& f : results["fronts"]) counted += f["unresolved"].get<std::size_t>();
+  EXPECT_EQ(counted, unresolved);
   // Depth 1 is the least accurate and fastest; the error falls with depth on five's glass.
   std::map<int, double> by_depth;
   for (const json& row : results["rows"])
@@ -338,6 +442,11 @@ TEST(Fronts, PrecisionFrontMeasuresFloatAgainstTheDoubleReference) {
   ASSERT_EQ(results["fronts"].size(), 1u);
   EXPECT_EQ(results["fronts"][0]["reference"]["params"]["precision"], "double");
   EXPECT_EQ(results["fronts"][0]["floor"], 0.0);
+  // The double row is the reference itself: its error (0) cannot be told from the reference's,
+  // so it is unresolved; float's small error is resolved against a floor of 0.
+  for (const json& row : results["rows"])
+    EXPECT_EQ(row["resolved"].get<bool>(), row["integrator_params"]["precision"] == "float") << row.dump();
+  EXPECT_EQ(results["fronts"][0]["unresolved"], 1);
   fs::remove_all(dir);
 }
 
