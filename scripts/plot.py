@@ -19,7 +19,8 @@ and prints a Markdown table of the best measured speedups beside the paper's. Re
 
   fronts_<scene>  error against median render time for each accuracy knob, the Pareto front
                   highlighted and the reference's own error (its floor) marked (fronts of another
-                  integrator than whitted: fronts_<integrator>_<scene>)
+                  integrator than whitted: fronts_<integrator>_<scene>); each point's error
+                  interval as an error bar, hollow where it reaches the floor (unresolved)
   convergence_<scene>
                   log-log MSE against photons per map for the photon-count fronts (progressive
                   photon mapping's passes, the photon integrator's global/caustic photons), each
@@ -591,6 +592,33 @@ def knob_label(params, knobs):
     return ", ".join(f"{params.get(k)}" for k in knobs)
 
 
+def draw_points(ax, pts, size, color, label, zorder):
+    """Front points as markers: filled when the reference resolves their error, hollow (gid
+    "unresolved" in the SVG) when their interval reaches the reference's floor."""
+    solid = [p for p in pts if p[4]]
+    hollow = [p for p in pts if not p[4]]
+    ax.scatter([p[0] for p in solid], [p[1] for p in solid], s=size, color=color, label=label if solid else None,
+               zorder=zorder)
+    if hollow:
+        ax.scatter([p[0] for p in hollow], [p[1] for p in hollow], s=size, facecolors="none", edgecolors=color,
+                   linewidths=1.2, label=None if solid else label, zorder=zorder, gid="unresolved")
+
+
+def draw_intervals(ax, pts):
+    """Each point's error interval (the seeds' spread widened by the reference's floor) as an
+    error bar; a lower end of 0 runs off the bottom of the log axis."""
+    with_interval = [p for p in pts if isinstance(p[5], list) and len(p[5]) == 2]
+    if not with_interval:
+        return
+    xs = [p[0] for p in with_interval]
+    ys = [p[1] for p in with_interval]
+    # null ends are infinite (a broken render): no bar above such a point.
+    lo = [y - (p[5][0] if p[5][0] is not None else y) for p, y in zip(with_interval, ys)]
+    hi = [(p[5][1] - y) if p[5][1] is not None else 0.0 for p, y in zip(with_interval, ys)]
+    ax.errorbar(xs, ys, yerr=[[max(v, 0.0) for v in lo], [max(v, 0.0) for v in hi]], fmt="none", ecolor="0.45",
+                elinewidth=0.8, capsize=2, zorder=1, label="error interval (seeds and floor)")
+
+
 def plot_fronts(doc, out_dir):
     """One figure per scene: error against time for each knob group, the front highlighted."""
     metric = doc["sweep"]["fronts"].get("metric", "rmse")
@@ -616,8 +644,10 @@ def plot_fronts(doc, out_dir):
                 err = (r.get("error") or {}).get(metric)
                 if err is None:
                     continue
+                # Files written before error intervals have neither field: resolved, no interval.
                 point = (r["render_ms"]["median"], err, r.get("on_front", False),
-                         knob_label(r.get("integrator_params", {}), knobs))
+                         knob_label(r.get("integrator_params", {}), knobs), r.get("resolved", True),
+                         r.get("error_interval"))
                 # A configuration equal to the reference (error 0, e.g. double on the precision
                 # front) has no place on a log axis: it is drawn below the others, marked.
                 (pts if err > 0 else exact).append(point)
@@ -629,16 +659,21 @@ def plot_fronts(doc, out_dir):
                 bottom = min([p[1] for p in pts] + [1e-3]) / 10
                 ax.scatter([p[0] for p in exact], [bottom] * len(exact), marker="v", s=36, color="tab:red",
                            label="error 0 (equals the reference)", zorder=3)
-                for t, _, _, label in exact:
+                for t, _, _, label, _, _ in exact:
                     ax.annotate(label + ": error 0", (t, bottom), textcoords="offset points", xytext=(4, 3),
                                 fontsize=7, color="0.25")
             off = [p for p in pts if not p[2]]
             on = sorted((p for p in pts if p[2]), key=lambda p: p[0])
-            ax.scatter([p[0] for p in off], [p[1] for p in off], s=22, color="0.6", label="dominated", zorder=2)
-            ax.scatter([p[0] for p in on], [p[1] for p in on], s=30, color="tab:red", label="Pareto front", zorder=3)
+            draw_points(ax, off, 22, "0.6", "dominated", 2)
+            draw_points(ax, on, 30, "tab:red", "Pareto front", 3)
+            if any(not p[4] for p in pts):
+                # One legend entry for every hollow marker, whichever its colour.
+                ax.scatter([], [], s=30, facecolors="none", edgecolors="0.3",
+                           label="hollow: unresolved (interval reaches the reference floor)")
+            draw_intervals(ax, pts)
             if on:
                 ax.step([p[0] for p in on], [p[1] for p in on], where="post", color="tab:red", lw=1.2, zorder=2)
-            for t, e, _, label in pts:
+            for t, e, _, label, _, _ in pts:
                 ax.annotate(label, (t, e), textcoords="offset points", xytext=(4, 3), fontsize=7, color="0.25")
             floor = front.get("floor")
             if floor and floor > 0:
