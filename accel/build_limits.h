@@ -1,5 +1,7 @@
 #pragma once
-// Resource limits every builder honours.
+// Resource limits every builder honours, and what the primitives can say beyond their boxes.
+
+#include "primitive_overlap.h"
 
 #include <cstdint>
 
@@ -9,6 +11,9 @@ namespace accel {
 struct BuildLimits {
   /// Most bytes a structure may allocate for nodes and references; 0 means 25% of physical RAM.
   std::uint64_t max_memory_bytes = 0;
+  /// Whether a primitive touches a cell, for the trees that divide space (octree, kd-trees);
+  /// default: its box decides.
+  PrimitiveOverlap overlap;
 };
 
 /// Resolves 0 to the default budget of 25% of physical memory.

@@ -42,7 +42,7 @@ KdTree::KdTree(std::span<const Aabb> boxes, const KdTreeParams& params, const Bu
     : params_(params) {
   KdTreeParams::knobs().validate(params_);
   const auto start = std::chrono::steady_clock::now();
-  build(boxes, memory_budget_bytes(limits));
+  build(boxes, memory_budget_bytes(limits), limits.overlap);
   stats_.build_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }

@@ -6,6 +6,7 @@
 // traversed front to back with a small stack here.
 
 #include "geometry.h"
+#include "primitive_overlap.h"
 #include "interval_slack.h"
 #include "knobs/knob_table.h"
 #include "leaf_loop.h"
@@ -217,7 +218,7 @@ class KdTree {
     }
   }
 
-  void build(std::span<const Aabb> boxes, std::uint64_t budget_bytes);
+  void build(std::span<const Aabb> boxes, std::uint64_t budget_bytes, const PrimitiveOverlap& overlap);
 
   KdTreeParams params_;
   Aabb bounds_{Vec3(0.0f), Vec3(0.0f)};

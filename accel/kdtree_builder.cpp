@@ -18,10 +18,11 @@ namespace {
 class KdTreeBuilder {
  public:
   KdTreeBuilder(std::span<const Aabb> boxes, const KdTreeParams& params, std::uint64_t budget,
-                std::vector<KdNode>& nodes, std::vector<std::uint32_t>& prim_ids,
-                std::vector<KdPrimRange>& inner_prims, BuildStats& stats)
+                const PrimitiveOverlap& overlap, std::vector<KdNode>& nodes,
+                std::vector<std::uint32_t>& prim_ids, std::vector<KdPrimRange>& inner_prims, BuildStats& stats)
       : boxes_(boxes),
         params_(params),
+        overlap_(overlap),
         every_level_(params.placement == Placement::EveryLevel),
         budget_(budget, "kdtree",
                 "lower max_depth or raise max_leaf_size, or use placement every_level"),
@@ -97,6 +98,20 @@ class KdTreeBuilder {
       }
     }
 
+    // A box across the plane: keep the sides the primitive itself touches (both when it touches
+    // neither: it touches the cell, so its box decides).
+    Aabb below_cell = cell, above_cell = cell;
+    below_cell.hi[split.axis] = split.position;
+    above_cell.lo[split.axis] = split.position;
+    if (overlap_.active())
+      for (std::size_t i = begin; i < end; ++i) {
+        std::uint8_t& s = side_[work_[i]];
+        if (s != (kBelow | kAbove)) continue;
+        const std::uint8_t kept = std::uint8_t((overlap_(work_[i], below_cell) ? kBelow : 0) |
+                                               (overlap_(work_[i], above_cell) ? kAbove : 0));
+        if (kept) s = kept;
+      }
+
     // With every_level, straddlers stay in this node; everything else goes down.
     std::size_t n_below = 0, n_above = 0, own = 0;
     for (std::size_t i = begin; i < end; ++i) {
@@ -133,9 +148,6 @@ class KdTreeBuilder {
     }
 
     stats_.sah_cost += area * (1.0 + double(own));
-    Aabb below_cell = cell, above_cell = cell;
-    below_cell.hi[split.axis] = split.position;
-    above_cell.lo[split.axis] = split.position;
     build(depth + 1, below_cell, base, base + n_below, bad_refines);
     nodes_[node] = KdNode::inner(split.axis, split.position, std::uint32_t(nodes_.size()));
     build(depth + 1, above_cell, base + n_below, base + n_below + n_above, bad_refines);
@@ -155,6 +167,7 @@ class KdTreeBuilder {
 
   std::span<const Aabb> boxes_;
   const KdTreeParams& params_;
+  const PrimitiveOverlap& overlap_;
   bool every_level_;
   BuildBudget budget_;
   std::vector<KdNode>& nodes_;
@@ -170,14 +183,14 @@ class KdTreeBuilder {
 
 }  // namespace
 
-void KdTree::build(std::span<const Aabb> boxes, std::uint64_t budget_bytes) {
+void KdTree::build(std::span<const Aabb> boxes, std::uint64_t budget_bytes, const PrimitiveOverlap& overlap) {
   if (boxes.size() > KdNode::kMaxIndex)
     throw knobs::ConfigError("kdtree: at most 2^30 - 1 primitives");
   bounds_ = {};
   for (const Aabb& b : boxes) bounds_.grow(b);
   if (bounds_.is_empty()) bounds_ = {Vec3(0.0f), Vec3(0.0f)};
   stats_ = {};
-  KdTreeBuilder(boxes, params_, budget_bytes, nodes_, prim_ids_, inner_prims_, stats_)
+  KdTreeBuilder(boxes, params_, budget_bytes, overlap, nodes_, prim_ids_, inner_prims_, stats_)
       .run(bounds_);
 }
 

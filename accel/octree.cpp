@@ -29,7 +29,7 @@ Octree::Octree(std::span<const Aabb> boxes, const OctreeParams& params, const Bu
     : params_(params) {
   OctreeParams::knobs().validate(params_);
   const auto start = std::chrono::steady_clock::now();
-  build(boxes, memory_budget_bytes(limits));
+  build(boxes, memory_budget_bytes(limits), limits.overlap);
   stats_.build_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }

@@ -4,6 +4,7 @@
 // are neither stored nor visited. Built in octree_builder.cpp; traversed front to back here.
 
 #include "geometry.h"
+#include "primitive_overlap.h"
 #include "interval_slack.h"
 #include "knobs/knob_table.h"
 #include "leaf_loop.h"
@@ -229,7 +230,7 @@ class Octree {
     return hit;
   }
 
-  void build(std::span<const Aabb> boxes, std::uint64_t budget_bytes);
+  void build(std::span<const Aabb> boxes, std::uint64_t budget_bytes, const PrimitiveOverlap& overlap);
 
   OctreeParams params_;
   Aabb root_cell_{Vec3(0.0f), Vec3(0.0f)};

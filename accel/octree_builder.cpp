@@ -32,10 +32,11 @@ std::uint8_t overlap_mask(const Aabb& b, const Vec3& mid) {
 class OctreeBuilder {
  public:
   OctreeBuilder(std::span<const Aabb> boxes, const OctreeParams& params, std::uint64_t budget,
-                std::vector<OctreeNode>& nodes, std::vector<std::uint32_t>& prim_ids,
-                BuildStats& stats)
+                const PrimitiveOverlap& overlap, std::vector<OctreeNode>& nodes,
+                std::vector<std::uint32_t>& prim_ids, BuildStats& stats)
       : boxes_(boxes),
         params_(params),
+        overlap_(overlap),
         budget_(budget, "octree",
                 "lower max_depth or raise max_leaf_size, or use placement every_level"),
         nodes_(nodes),
@@ -104,6 +105,8 @@ class OctreeBuilder {
       std::size_t own = 0;
       for (std::size_t i = cell.begin; i < cell.end; ++i) {
         std::uint8_t m = overlap_mask(boxes_[refs_[i]], mid);
+        // A box over several children: keep the children the primitive itself touches.
+        if (overlap_.active() && std::popcount(m) > 1) m = touched(refs_[i], m, cell.box, mid);
         if (every_level && std::popcount(m) > 1) {
           m = 0;
           ++own;
@@ -161,6 +164,17 @@ class OctreeBuilder {
     node.prim_count = std::uint32_t(count);
   }
 
+  /// The children of `mask` (of `box` split at `mid`) that primitive `id` touches; all of
+  /// `mask` when it touches none (it touches the cell: keep it where its box says).
+  std::uint8_t touched(std::uint32_t id, std::uint8_t mask, const Aabb& box, const Vec3& mid) const {
+    std::uint8_t kept = 0;
+    for (unsigned m = mask; m != 0; m &= m - 1) {
+      const unsigned c = unsigned(std::countr_zero(m));
+      if (overlap_(id, child_cell(box, mid, c))) kept |= std::uint8_t(1u << c);
+    }
+    return kept ? kept : mask;
+  }
+
   double area_of(const Aabb& box, int depth) const {
     if (inv_root_area_ > 0.0) return double(box.half_area()) * inv_root_area_;
     return depth == 0 ? 1.0 : 0.0;  // a point-sized scene: only the root counts
@@ -170,6 +184,7 @@ class OctreeBuilder {
 
   std::span<const Aabb> boxes_;
   const OctreeParams& params_;
+  const PrimitiveOverlap& overlap_;
   BuildBudget budget_;
   std::vector<OctreeNode>& nodes_;
   std::vector<std::uint32_t>& prim_ids_;
@@ -195,12 +210,12 @@ Aabb root_cube(std::span<const Aabb> boxes) {
 
 }  // namespace
 
-void Octree::build(std::span<const Aabb> boxes, std::uint64_t budget_bytes) {
+void Octree::build(std::span<const Aabb> boxes, std::uint64_t budget_bytes, const PrimitiveOverlap& overlap) {
   if (boxes.size() >= std::numeric_limits<std::uint32_t>::max())
     throw knobs::ConfigError("octree: at most 2^32 - 2 primitives");
   root_cell_ = root_cube(boxes);
   stats_ = {};
-  OctreeBuilder(boxes, params_, budget_bytes, nodes_, prim_ids_, stats_).run(root_cell_);
+  OctreeBuilder(boxes, params_, budget_bytes, overlap, nodes_, prim_ids_, stats_).run(root_cell_);
 }
 
 }  // namespace accel

@@ -7,6 +7,7 @@
 #include "integrators/integrators.h"
 
 #include "accel/accel.h"
+#include "tracer/build_accel.h"
 #include "tracer/intersector.h"
 #include "tracer/render.h"
 #include "tracer/scene_io.h"
@@ -144,8 +145,7 @@ int run_render(const RenderFlags& f) {
   // Built before anything is printed, so that a bad knob is the only line of output.
   const auto boxes = scene.geometry.primitive_bounds();
   const auto build_start = std::chrono::steady_clock::now();
-  accel::AnyAccel structure = accel::make_accel(accel_name, params, boxes, limits);
-  tracer::attach_geometry(structure, scene.geometry);
+  accel::AnyAccel structure = tracer::build_accel(accel_name, params, scene.geometry, boxes, limits);
   const double build_ms = ms_since(build_start);
   const accel::BuildStats& build = accel::stats_of(structure);
 

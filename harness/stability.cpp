@@ -3,6 +3,7 @@
 #include "harness/sweep_machine.h"
 
 #include "accel/accel.h"
+#include "tracer/build_accel.h"
 #include "tracer/image_compare.h"
 #include "tracer/intersector.h"
 
@@ -262,8 +263,8 @@ json run_stability(const tracer::Scene& scene, const StabilityOptions& o, std::o
     json structures = json::array();
     progress << ", " << o.structures.size() << " structures" << std::flush;
     for (const CheckedStructure& s : o.structures) {
-      accel::AnyAccel built = accel::make_accel(s.name, s.params, boxes);
-      tracer::attach_geometry(built, scene_v.geometry);  // the wide BVHs' SIMD sphere leaves, as render uses them
+      // As render builds it: the triangles' cell test, the wide BVHs' SIMD sphere leaves.
+      accel::AnyAccel built = tracer::build_accel(s.name, s.params, scene_v.geometry, boxes);
       const Rendered r = render_once(scene_v, built, o, tracer::Precision::Float);
       const bool same_image = r.result.image == f.result.image;
       const bool same_rays = r.result.rays == f.result.rays;

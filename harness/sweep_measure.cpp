@@ -2,6 +2,7 @@
 
 #include "integrators/integrators.h"
 
+#include "tracer/build_accel.h"
 #include "tracer/image.h"
 #include "tracer/intersector.h"
 #include "tracer/parallel.h"
@@ -86,8 +87,7 @@ Prepared prepare(const tracer::Scene& scene, std::span<const accel::Aabb> boxes,
   Measurement& m = p.m;
   const auto t_build = Clock::now();
   try {
-    p.built = accel::make_accel(structure, params, boxes, options.limits);
-    tracer::attach_geometry(p.built, scene.geometry);
+    p.built = tracer::build_accel(structure, params, scene.geometry, boxes, options.limits);
   } catch (const std::bad_alloc&) {
     m.spent_build_s = seconds_since(t_build);
     m.status = RowStatus::Failed;

@@ -7,6 +7,7 @@
 #include "accel/isa.h"
 #include "tracer/scene_geometry.h"
 #include "tracer/intersector.h"
+#include "tracer/triangle_box.h"
 #include "scenes_gen/closed_meshes.h"
 
 #include <gtest/gtest.h>
@@ -439,7 +440,9 @@ TEST_P(Oracle, EveryStructureAndKnobMatchesNaive) {
 
   // A small budget keeps an exploding configuration (octree, `leaves`, deep) short; such a
   // build must fail cleanly with a ConfigError naming --max-memory.
-  const accel::BuildLimits limits{16ull << 20};
+  // The triangles' own cell test, as render builds (tracer/build_accel.h).
+  accel::BuildLimits limits{16ull << 20};
+  limits.overlap = tracer::primitive_overlap(scene.geometry);
   int configs = 0, over_budget = 0, cpu_lacks = 0;
   for (const std::string& name : accel::accel_names()) {
     if (!accel::accel_built(name)) continue;

@@ -6,6 +6,7 @@
 #include "tracer/intersector.h"
 #include "tracer/scene_geometry.h"
 #include "tracer/triangle.h"
+#include "tracer/triangle_box.h"
 
 #include "accel/accel.h"
 
@@ -142,6 +143,46 @@ TEST(Triangle, ClosedMeshesAreClosedAndOutward) {
     }
   }
   EXPECT_EQ(scenes_gen::icosphere(3).triangles.size(), scenes_gen::icosphere_triangles(3));
+}
+
+TEST(TriangleBox, TheSeparatingAxisTestDecidesWhereBoxesCannot) {
+  const accel::Aabb unit{Vec3(0.0f), Vec3(1.0f)};
+  const auto tri = [](Vec3 a, Vec3 b, Vec3 c) { return tracer::Triangle{a, b, c, 0, -1}; };
+  // Inside, crossing a face, and touching a face exactly.
+  EXPECT_TRUE(tracer::triangle_touches_box(tri({0.2f, 0.2f, 0.5f}, {0.8f, 0.2f, 0.5f}, {0.5f, 0.8f, 0.5f}), unit, 0.0));
+  EXPECT_TRUE(tracer::triangle_touches_box(tri({-1, 0.5f, 0.5f}, {2, 0.5f, 0.5f}, {0.5f, 2, 0.5f}), unit, 0.0));
+  EXPECT_TRUE(tracer::triangle_touches_box(tri({1, 0, 0}, {1, 1, 0}, {1, 0, 1}), unit, 0.0));
+  // A triangle passing the corner (1, 1, 1), x + y + z = 3.5, whose box covers the cell: its
+  // plane separates.
+  const tracer::Triangle corner = tri({3.5f, 0.0f, 0.0f}, {0.0f, 3.5f, 0.0f}, {0.0f, 0.0f, 3.5f});
+  EXPECT_FALSE(tracer::triangle_touches_box(corner, unit, 0.0));
+  EXPECT_TRUE(tracer::triangle_touches_box(corner, unit, 0.5));  // the margin widens the box
+  // A long thin sliver along the diagonal of the xy-plane at z = 0.5, beside the box: only an
+  // edge-by-axis product separates it.
+  EXPECT_FALSE(tracer::triangle_touches_box(tri({1.3f, -0.2f, 0.5f}, {3.0f, 1.5f, 0.5f}, {3.0f, 1.49f, 0.5f}), unit, 0.0));
+}
+
+TEST(TriangleBox, TreesThatDivideSpaceKeepOnlyTheCellsATriangleTouches) {
+  // Long thin diagonal triangles: each box spans the scene, the triangles cross few cells.
+  tracer::Geometry g;
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> u(-5.0f, 5.0f);
+  for (int i = 0; i < 400; ++i) {
+    const Vec3 a(u(rng), u(rng), u(rng)), d = glm::normalize(Vec3(u(rng), u(rng), u(rng))) * 8.0f;
+    g.triangles.push_back({a - d, a + d, a + d + Vec3(0.01f, 0.02f, 0.0f), 0});
+  }
+  g.finalize();
+  const auto boxes = g.primitive_bounds();
+  for (const char* name : {"octree", "kdtree"}) {
+    accel::BuildLimits with;
+    with.overlap = tracer::primitive_overlap(g);
+    const nlohmann::json knobs = {{"max_depth", 5}, {"max_leaf_size", 4}};
+    const std::uint64_t by_box = accel::stats_of(accel::make_accel(name, knobs, boxes)).prim_refs;
+    const std::uint64_t by_triangle = accel::stats_of(accel::make_accel(name, knobs, boxes, with)).prim_refs;
+    std::printf("%s: %llu references by box, %llu by the triangle test\n", name,
+                static_cast<unsigned long long>(by_box), static_cast<unsigned long long>(by_triangle));
+    EXPECT_LT(double(by_triangle), 0.6 * double(by_box)) << name;
+  }
 }
 
 }  // namespace
