@@ -2,6 +2,7 @@
 // renders bit-identical, with identical ray counts, through every structure and knob setting.
 
 #include "accel/accel.h"
+#include "scenes_gen/closed_meshes.h"
 #include "scenes_gen/generators.h"
 #include "structure_configs.h"
 #include "tracer/render.h"
@@ -11,6 +12,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cstdio>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -54,8 +57,10 @@ TEST(AccelImage, Spheres8000IsBitIdenticalThroughEveryStructure) {
   }
 }
 
-/// Every structure variant renders `scene` bit-identical to naive, with equal ray counts.
-void expect_every_structure_equals_naive(const tracer::Scene& scene) {
+/// Every structure variant renders `scene` bit-identical to naive, with equal ray counts, with the
+/// Whitted knobs `knobs`.
+void expect_every_structure_equals_naive(const tracer::Scene& scene,
+                                         const nlohmann::json& knobs = nlohmann::json::object()) {
   const std::vector<accel::Aabb> boxes = scene.geometry.primitive_bounds();
   tracer::RenderOptions options;
   options.width = 96;
@@ -63,14 +68,46 @@ void expect_every_structure_equals_naive(const tracer::Scene& scene) {
   options.threads = 2;
   const tracer::RenderResult reference =
       tracer::render(scene, accel::make_accel("naive", {}, boxes), options,
-                     tracer::whitted_integrator());
+                     tracer::whitted_integrator(), knobs);
   ASSERT_GT(reference.rays.eye_hits, 500u);
   for (const Variant& v : variants()) {
     SCOPED_TRACE(v.label());
     const tracer::RenderResult result =
-        tracer::render(scene, v.build(boxes), options, tracer::whitted_integrator());
+        tracer::render(scene, v.build(scene.geometry, boxes), options, tracer::whitted_integrator(), knobs);
     EXPECT_TRUE(result.image == reference.image);
     EXPECT_TRUE(result.rays == reference.rays);
+  }
+}
+
+/// `mesh` scaled by `scale` and moved to `at`, appended to the scene's triangles.
+void add_closed_mesh(tracer::Scene& scene, const tracer::MeshData& mesh, accel::Vec3 at, float scale,
+                     std::uint32_t material) {
+  for (const auto& t : mesh.triangles)
+    scene.geometry.triangles.push_back({at + scale * mesh.vertices[t[0]], at + scale * mesh.vertices[t[1]],
+                                        at + scale * mesh.vertices[t[2]], material, -1});
+}
+
+TEST(AccelImage, MeshScenesRenderEqualToNaiveThroughEveryStructure) {
+  // The five-sphere scene's glass, mirror and diffuse spheres as closed triangle meshes
+  // (refraction through a watertight icosphere), and a grid cube: both triangle routines.
+  tracer::Scene scene = scenes_gen::generate("five", {});
+  const std::vector<tracer::Sphere> spheres = scene.geometry.spheres;
+  scene.geometry.spheres.clear();
+  for (std::size_t i = 0; i < spheres.size(); ++i)
+    add_closed_mesh(scene, scenes_gen::icosphere(i == 0 ? 3 : 2), spheres[i].center, spheres[i].radius,
+                    spheres[i].material);
+  add_closed_mesh(scene, scenes_gen::grid_cube(3), {0.0f, 0.3f, 2.4f}, 0.3f, 1);
+  scene.geometry.finalize();
+  expect_every_structure_equals_naive(scene);
+  expect_every_structure_equals_naive(scene, {{"triangle", "moller"}});
+
+  // A standard model, as `gen mesh` frames it.
+  if (std::filesystem::exists(ACCELBENCH_MESHES_DIR)) {
+    scenes_gen::GenOptions teapot;
+    teapot.model = "teapot";
+    expect_every_structure_equals_naive(scenes_gen::generate("mesh", teapot));
+  } else {
+    std::printf("%s is absent: the teapot scene is skipped\n", ACCELBENCH_MESHES_DIR);
   }
 }
 

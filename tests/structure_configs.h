@@ -5,6 +5,7 @@
 
 #include "accel/accel.h"
 #include "accel/isa.h"
+#include "tracer/build_accel.h"
 
 #include <nlohmann/json.hpp>
 
@@ -26,6 +27,10 @@ struct StructureConfig {
 
   std::string label() const { return params.empty() ? name : name + " " + params.dump(); }
   accel::AnyAccel build(std::span<const accel::Aabb> boxes) const { return accel::make_accel(name, params, boxes); }
+  /// Built as render builds it: the triangles' own cell test, the spheres attached.
+  accel::AnyAccel build(const tracer::Geometry& geometry, std::span<const accel::Aabb> boxes) const {
+    return tracer::build_accel(name, params, geometry, boxes);
+  }
 };
 
 /// The ISA knob values a structure with an `isa` knob is rendered at: every level the CPU has.
