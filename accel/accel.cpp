@@ -125,6 +125,14 @@ void attach_spheres(AnyAccel& a, std::span<const SphereShape> spheres) {
       static_cast<StructureVariant&>(a));
 }
 
+void attach_triangles(AnyAccel& a, std::span<const TriangleShape> triangles) {
+  std::visit(
+      [&](auto& s) {
+        if constexpr (requires { s.attach_triangles(triangles); }) s.attach_triangles(triangles);
+      },
+      static_cast<StructureVariant&>(a));
+}
+
 nlohmann::json params_of(const AnyAccel& a) {
   nlohmann::json j = std::visit(
       [](const auto& s) -> nlohmann::json {

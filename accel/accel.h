@@ -83,6 +83,9 @@ AnyAccel make_accel(std::string_view name, const nlohmann::json& params,
 /// its leaves can test spheres in SIMD (bvh4, bvh8); other structures ignore them. The time
 /// is added to the structure's build_ms.
 void attach_spheres(AnyAccel& a, std::span<const SphereShape> spheres);
+/// Hands a triangle-only scene's triangles (triangles[i] is primitive i) to the built structure
+/// when it tests them itself (embree_triangles); other structures ignore them.
+void attach_triangles(AnyAccel& a, std::span<const TriangleShape> triangles);
 
 /// The exact parameters a built structure used, every knob spelled out, plus "selected_by"
 /// when a selector chose it.

@@ -63,6 +63,12 @@ const knobs::KnobTable<EmbreePointsParams>& EmbreePointsParams::knobs() {
   return table;
 }
 
+const knobs::KnobTable<EmbreeTrianglesParams>& EmbreeTrianglesParams::knobs() {
+  static const knobs::KnobTable<EmbreeTrianglesParams> table("embree_triangles",
+                                                             embree_knobs<EmbreeTrianglesParams>());
+  return table;
+}
+
 Isa resolve_embree_isa(EmbreeIsa isa, IsaSet cpu) {
   switch (isa) {
     case EmbreeIsa::Build: return build_isa();

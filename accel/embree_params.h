@@ -1,5 +1,5 @@
 #pragma once
-// Knobs of the Embree peers (embree_accel.h, embree_points.h). Compiled whether or not Embree 3
+// Knobs of the Embree peers (embree_accel.h, embree_points.h, embree_triangles.h). Compiled whether or not Embree 3
 // was found, so that the knob reference and the registry know them in every build.
 
 #include "isa.h"
@@ -52,6 +52,13 @@ struct EmbreeParams {
 /// Knobs of embree_points: the same as the user-geometry adapter's, under its own name.
 struct EmbreePointsParams : EmbreeParams {
   static const knobs::KnobTable<EmbreePointsParams>& knobs();
+};
+
+/// Knobs of embree_triangles: the adapter's, under its own name, with Embree's default build
+/// (not robust) as the default, the bar users know; robust = true is its watertight mode.
+struct EmbreeTrianglesParams : EmbreeParams {
+  EmbreeTrianglesParams() { robust = false; }
+  static const knobs::KnobTable<EmbreeTrianglesParams>& knobs();
 };
 
 /// The level `isa` stands for on a CPU with the levels `cpu` (Build and Cpu resolved).

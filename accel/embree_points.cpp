@@ -1,23 +1,15 @@
 #include "embree_points.h"
 
-#include "knobs/config_error.h"
-
 #include <chrono>
-#include <stdexcept>
-#include <string>
 
 namespace accel {
 
 void EmbreePoints::attach_spheres(std::span<const SphereShape> spheres) {
-  BuildStats& stats = embree_.mutable_stats();
-  if (spheres.size() != stats.primitives)
-    throw std::invalid_argument(std::string(kName) + ": " + std::to_string(spheres.size()) +
-                                " spheres attached to a structure over " + std::to_string(stats.primitives) +
-                                " primitives");
+  check_count(spheres.size(), kName, "spheres");
   const auto start = std::chrono::steady_clock::now();
-  embree_detail::Scene scene = embree_.new_scene();
+  embree_detail::Scene scene = new_scene();
   if (!spheres.empty()) {
-    RTCGeometry geom = rtcNewGeometry(embree_.device(), RTC_GEOMETRY_TYPE_SPHERE_POINT);
+    RTCGeometry geom = rtcNewGeometry(device(), RTC_GEOMETRY_TYPE_SPHERE_POINT);
     auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4,
                                                           4 * sizeof(float), spheres.size()));
     if (v) {
@@ -32,10 +24,7 @@ void EmbreePoints::attach_spheres(std::span<const SphereShape> spheres) {
     }
     rtcReleaseGeometry(geom);
   }
-  embree_.commit(scene);  // throws on the budget (a refused buffer included) and Embree's errors
-  embree_.replace_scene(std::move(scene));
-  native_ = true;
-  stats.build_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  make_native(std::move(scene), start);
 }
 
 }  // namespace accel

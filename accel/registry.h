@@ -8,6 +8,7 @@
 #include "bvh.h"
 #include "embree_accel.h"
 #include "embree_points.h"
+#include "embree_triangles.h"
 #include "kdtree.h"
 #include "naive.h"
 #include "octree.h"
@@ -24,7 +25,8 @@ struct TypeList {};
 
 /// Every registered entry, in display order: the structures, a structure compiled out of this
 /// build (it has kMissing), and selectors (kSelector) that pick one of the structures.
-using Registry = TypeList<Naive, Octree, KdTree, Bvh, Bvh4, Bvh8, EmbreeAccel, EmbreePoints, AutoSelect>;
+using Registry = TypeList<Naive, Octree, KdTree, Bvh, Bvh4, Bvh8, EmbreeAccel, EmbreePoints, EmbreeTriangles,
+                         AutoSelect>;
 
 /// An entry that chooses among the structures instead of being one (`auto`).
 template <class E>

@@ -182,7 +182,7 @@ TEST(Bvh, ClosestAndAnyHitThroughLeafCallback) {
 TEST(Bvh, MemoryBudgetIsHonoured) {
   const auto boxes = random_boxes(1000, 4);
   try {
-    Bvh(boxes, BvhParams{}, accel::BuildLimits{1000});
+    Bvh(boxes, BvhParams{}, accel::BuildLimits{1000, {}});
     FAIL() << "expected ConfigError";
   } catch (const knobs::ConfigError& e) {
     EXPECT_NE(std::string(e.what()).find("--max-memory"), std::string::npos) << e.what();

@@ -132,9 +132,8 @@ class Intersector {
 
  private:
   // The leaf functions of the traversal contract. accept() takes a t the structure computed
-  // itself with the same routine (SIMD sphere leaves, accel/sphere_soa.h); it exists only for
-  // sphere-only scenes, where every id is a sphere.
-  static constexpr bool kSpheresOnly = Kinds == KindSet::SpheresOnly;
+  // itself: with the same routine (SIMD sphere leaves, accel/sphere_soa.h, which hold spheres
+  // only in sphere-only scenes), or with its own (Embree's primitives, a peer within a tolerance).
 
   /// Closest hit: keeps the nearest, ties to the lower id.
   struct ClosestLeaf {
@@ -152,7 +151,6 @@ class Intersector {
     }
     bool operator()(std::uint32_t id, Ray& r) const { return keep(id, geo->template intersect_bounded<Kinds>(id, r, tri), r); }
     bool accept(std::uint32_t id, float t, Ray& r) const
-      requires kSpheresOnly
     {
       return keep(id, t, r);
     }
@@ -165,7 +163,6 @@ class Intersector {
     Hit* hits;
     bool operator()(std::size_t lane, std::uint32_t id, Ray& r) const { return ClosestLeaf{geo, tri, hits + lane}(id, r); }
     bool accept(std::size_t lane, std::uint32_t id, float t, Ray& r) const
-      requires kSpheresOnly
     {
       return ClosestLeaf{geo, tri, hits + lane}.keep(id, t, r);
     }
@@ -197,7 +194,6 @@ class Intersector {
     TriangleTest tri;
     bool operator()(std::uint32_t id, Ray& r) const { return geo->template intersect_bounded<Kinds>(id, r, tri) < r.tmax; }
     bool accept(std::uint32_t, float t, Ray& r) const
-      requires kSpheresOnly
     {
       return t < r.tmax;
     }
@@ -209,7 +205,6 @@ class Intersector {
     TriangleTest tri;
     bool operator()(std::size_t, std::uint32_t id, Ray& r) const { return AnyLeaf{geo, tri}(id, r); }
     bool accept(std::size_t, std::uint32_t, float t, Ray& r) const
-      requires kSpheresOnly
     {
       return t < r.tmax;
     }
@@ -222,13 +217,21 @@ class Intersector {
 };
 
 /// Gives a structure built over geometry.primitive_bounds() what it needs of the primitives
-/// themselves: the spheres of a sphere-only scene, for structures with SIMD sphere leaves.
+/// themselves: the spheres of a sphere-only scene, for structures with SIMD sphere leaves and
+/// embree_points; the triangles of a triangle-only scene, for embree_triangles.
 inline void attach_geometry(accel::AnyAccel& a, const Geometry& geometry) {
-  if (geometry.bounded_count() != geometry.spheres.size() || geometry.spheres.empty()) return;
-  std::vector<accel::SphereShape> shapes;
-  shapes.reserve(geometry.spheres.size());
-  for (const Sphere& s : geometry.spheres) shapes.push_back({s.center, s.radius});
-  accel::attach_spheres(a, shapes);
+  if (geometry.bounded_count() == geometry.spheres.size() && !geometry.spheres.empty()) {
+    std::vector<accel::SphereShape> shapes;
+    shapes.reserve(geometry.spheres.size());
+    for (const Sphere& s : geometry.spheres) shapes.push_back({s.center, s.radius});
+    accel::attach_spheres(a, shapes);
+  } else if (geometry.bounded_count() == geometry.triangles.size() && !geometry.triangles.empty() &&
+             accel::name_of(a) == accel::EmbreeTriangles::kName) {
+    std::vector<accel::TriangleShape> shapes;
+    shapes.reserve(geometry.triangles.size());
+    for (const Triangle& t : geometry.triangles) shapes.push_back({t.p0, t.p1, t.p2});
+    accel::attach_triangles(a, shapes);
+  }
 }
 
 /// Calls fn(intersector) with the intersector specialised for this structure, this scene's kind

@@ -58,12 +58,24 @@ SurfacePointT<T> on_sphere(const Sphere& s, const RayT<T>& ray, T t) {
 }
 
 template <class T>
-SurfacePointT<T> on_triangle(const Geometry& g, const Triangle& tri, const RayT<T>& ray,
+SurfacePointT<T> on_triangle(const Geometry& g, const Triangle& tri, const RayT<T>& ray, T t,
                              TriangleTest test) {
   SurfacePointT<T> sp;
   const Vec3T<T> p0(tri.p0), p1(tri.p1), p2(tri.p2);
   T u = T(0), v = T(0);
-  triangle_distance<T>(test, p0, p1, p2, ray, &u, &v);
+  if (triangle_distance<T>(test, p0, p1, p2, ray, &u, &v) == kInfinityOf<T>) {
+    // A hit another routine found (Embree's own triangles, a peer within a tolerance) that ours
+    // misses by a rounding at an edge: the barycentrics of the point at t, clamped into the
+    // triangle, so that the point lies on it rather than at p0.
+    const Vec3T<T> e1 = p1 - p0, e2 = p2 - p0, d = ray.org + t * ray.dir - p0;
+    const T a = glm::dot(e1, e1), b = glm::dot(e1, e2), c = glm::dot(e2, e2);
+    const T det = a * c - b * b;
+    if (det > T(0)) {
+      const T p = glm::dot(d, e1), q = glm::dot(d, e2);
+      u = std::clamp((c * p - b * q) / det, T(0), T(1));
+      v = std::clamp((a * q - b * p) / det, T(0), T(1) - u);
+    }
+  }
   const T w = T(1) - u - v;
   // p0 + (u e1 + v e2): within an ulp of |p| plus a few of |u e1| + |v e2| of the plane, where
   // the barycentric w p0 + u p1 + v p2 is a few ulps of every |p_i| off.
@@ -269,7 +281,7 @@ SurfacePointT<T> surface_point_of(const Geometry& g, const RayT<T>& ray, const H
     case PrimitiveKind::Sphere:
       return on_sphere<T>(g.spheres[id - g.first_id[0]], ray, hit.t);
     case PrimitiveKind::Triangle:
-      return on_triangle<T>(g, g.triangles[id - g.first_id[1]], ray, triangles_by);
+      return on_triangle<T>(g, g.triangles[id - g.first_id[1]], ray, hit.t, triangles_by);
     case PrimitiveKind::Box:
       return on_box<T>(g.boxes[id - g.first_id[2]], ray, hit.t);
     case PrimitiveKind::Cone:
