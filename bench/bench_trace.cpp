@@ -1,26 +1,34 @@
-// Google Benchmark: closest-hit tracing through every structure on the paper's scenes, one
-// thread, 1024x768 camera rays (coherent; and packets: the same rays by 4x4-pixel tiles, 16 at a
-// time through the structures that traverse packets) and rays spawned off the camera hits (incoherent);
-// any-hit queries of the shadow rays from the camera hits to every light (shadow); whole
-// renders (Render/: Whitted on spheres8000 at 1024x768, the SPD scenes at 256x256, all ray
-// kinds, one thread; RenderPair/: the same renders paired with each peer's (embree,
-// embree_points), render by render);
-// plus build times over a grid of knobs.
+// Google Benchmark: closest-hit tracing through every structure on the paper's scenes and on
+// triangle meshes (bunny, ogre, nefertiti: shared standard models; grid1M: a million triangles of
+// instanced bunnies; present with ../shared/meshes), one thread, 1024x768 camera rays (coherent;
+// and packets: the same rays by 4x4-pixel tiles, 16 at a time through the structures that
+// traverse packets) and rays spawned off the camera hits (incoherent); any-hit queries of the
+// shadow rays from the camera hits to every light (shadow); whole renders (Render/: Whitted on
+// spheres8000 at 1024x768 and the meshes at 640x480, the SPD scenes at 256x256, all ray kinds,
+// one thread; RenderPair/: the same renders paired with each peer's (embree, and Embree's own
+// spheres or triangles where the scene is made of them), render by render); plus build times
+// over a grid of knobs.
 //
 // Every structure's hits are validated against naive before it is timed, on the path it times
 // (single rays, packets, any-hit queries; Embree at the ISA it is timed at): all rays, same
-// primitive, bit-equal t; a structure with its own primitive routine (embree_points) within a
-// tolerance (another primitive or any-hit answer for at most 0.1% of rays, t within 1e-5
-// relative). A mismatch skips that benchmark with an error and makes the binary exit non-zero. A whole render is validated by rendering a window of the image through naive
-// and through the structure: every pixel bit-equal. Naive's reference pass (8000 spheres x 786k rays, about 7 s) is computed once
-// per process and shared; naive itself is timed on every 64th ray of spheres8000, which is what
-// its rate and the speedup counters are based on (the counter names say so). Times and rates
-// are CPU time of the tracing thread, so other processes on a shared machine do not count.
+// primitive, bit-equal t; a structure with its own primitive routine (embree_points,
+// embree_triangles) within a tolerance (another primitive or any-hit answer for at most 0.1% of
+// rays, t within 1e-5 relative). A mismatch skips that benchmark with an error and makes the
+// binary exit non-zero. A whole render is validated by rendering a window of the image through
+// naive and through the structure: every pixel bit-equal. Naive's reference pass (8000 spheres x
+// 786k rays, about 7 s) is computed once per process and shared; naive itself is timed on every
+// 64th ray of spheres8000, which is what its rate and the speedup counters are based on (the
+// counter names say so). On the meshes naive would take hours: the reference on every ray is
+// the binary BVH's, checked bit for bit against naive's on every 64th ray or sparser (near 10^9
+// box tests), and a mismatch stops the run. Times and rates are CPU time of the tracing thread,
+// so other processes on a shared machine do not count.
 //
 //   build/bin/bench_trace --benchmark_filter='Trace/spheres8000'
 
 #include "accel/accel.h"
 #include "scenes_gen/generators.h"
+#include "scenes_gen/mesh_scenes.h"
+#include "tracer/build_accel.h"
 #include "tracer/camera.h"
 #include "tracer/image_compare.h"
 #include "tracer/intersector.h"
@@ -146,7 +154,7 @@ std::vector<Ray> camera_rays(const tracer::Scene& scene) {
   return rays;
 }
 
-/// Secondary rays off the camera hits: mirror reflections at even hits, uniformly random
+/// Secondary rays off the camera hits (of bounded primitives, not the floor): mirror reflections at even hits, uniformly random
 /// directions over the hemisphere at odd ones (diffuse and shadow-like). Seeded.
 std::vector<Ray> spawned_rays(const tracer::Geometry& g, const std::vector<Ray>& primary,
                               const std::vector<Hit>& hits) {
@@ -155,7 +163,7 @@ std::vector<Ray> spawned_rays(const tracer::Geometry& g, const std::vector<Ray>&
   std::vector<Ray> out;
   std::size_t k = 0;
   for (std::size_t i = 0; i < primary.size(); ++i) {
-    if (!hits[i].found() || hits[i].is_plane() || hits[i].prim >= g.spheres.size()) continue;
+    if (!hits[i].found() || hits[i].is_plane()) continue;
     const Ray& r = primary[i];
     const tracer::SurfacePoint sp = tracer::surface_point(g, r, hits[i], tracer::TriangleTest::Watertight);
     const Vec3 n = sp.n_geo;
@@ -187,18 +195,45 @@ std::vector<Ray> shadow_rays(const tracer::Scene& scene, const std::vector<Ray>&
   return out;
 }
 
-/// A benchmark scene by name: a generator's name, or random1M (a million random spheres).
+/// The triangle-mesh scenes: three of the shared standard models, framed on a floor, and a
+/// million triangles of instanced bunnies (mesh_grid). Present only with ../shared/meshes.
+const std::vector<std::string> kMeshScenes = {"bunny", "ogre", "nefertiti", "grid1M"};
+
+bool is_mesh_scene(const std::string& name) {
+  return std::find(kMeshScenes.begin(), kMeshScenes.end(), name) != kMeshScenes.end();
+}
+
+/// A benchmark scene by name: a generator's name, random1M (a million random spheres), or one
+/// of kMeshScenes.
 BenchScene& scene_named(const std::string& name) {
   static std::map<std::string, std::unique_ptr<BenchScene>> cache;
   auto& slot = cache[name];
   if (!slot) {
     slot = std::make_unique<BenchScene>();
     scenes_gen::GenOptions gen;
-    if (name == "random1M") gen.count = 1'000'000;
-    slot->scene = scenes_gen::generate(name == "random1M" ? "random" : name, gen);
+    std::string generator = name;
+    if (name == "random1M") {
+      generator = "random";
+      gen.count = 1'000'000;
+    } else if (name == "grid1M") {
+      generator = "mesh_grid";
+      gen.count = 1'000'000;
+    } else if (is_mesh_scene(name)) {
+      generator = "mesh";
+      gen.model = name;
+    }
+    slot->scene = scenes_gen::generate(generator, gen);
     slot->boxes = slot->scene.geometry.primitive_bounds();
   }
   return *slot;
+}
+
+/// Every kNaiveStride-th ray on ordinary scenes; on the meshes as many more as keep naive's
+/// work (rays x primitives) near 10^9 box tests, so that its reference takes seconds, not hours.
+std::size_t naive_stride_for(const std::string& scene_name, std::size_t primitives, std::size_t rays) {
+  if (primitives <= 1000) return 1;
+  if (!is_mesh_scene(scene_name)) return kNaiveStride;
+  return std::max(kNaiveStride, std::bit_ceil(std::size_t(double(primitives) * double(rays) / 1e9) + 1));
 }
 
 /// The reference and naive timing of a ray set, computed once per process.
@@ -233,28 +268,48 @@ RayData& ray_data(const std::string& scene_name, RaySet set) {
     d->rays = shadow_rays(bs.scene, primary.rays, primary.reference);
   }
   const bool any_hit = set == RaySet::Shadow;
+  const tracer::Geometry& g = bs.scene.geometry;
   const accel::AnyAccel naive = accel::make_accel("naive", nullptr, bs.boxes);
+  d->naive_stride = naive_stride_for(scene_name, bs.boxes.size(), d->rays.size());
+  for (std::size_t i = 0; i < d->rays.size(); i += d->naive_stride) d->naive_sample.push_back(d->rays[i]);
+  // The reference on every ray: naive's own, or on the meshes the binary BVH's (bit-identical to
+  // naive's in the oracle and image tests), checked bit for bit against naive's on the sample below.
+  const bool chained = is_mesh_scene(scene_name);
   const auto t0 = std::chrono::steady_clock::now();
-  std::fprintf(stderr, "bench_trace: naive reference for %s/%s (%zu rays)...\n", scene_name.c_str(),
-               ray_set_name(set), d->rays.size());
+  std::fprintf(stderr, "bench_trace: %s reference for %s/%s (%zu rays)...\n", chained ? "bvh" : "naive",
+               scene_name.c_str(), ray_set_name(set), d->rays.size());
+  const accel::AnyAccel reference = chained ? tracer::build_accel("bvh", nullptr, g, bs.boxes) : accel::AnyAccel();
+  const accel::AnyAccel& ref = chained ? reference : naive;
   if (any_hit)
-    occlude(bs.scene.geometry, naive, d->rays, d->blocked);
+    occlude(g, ref, d->rays, d->blocked);
   else
-    trace(bs.scene.geometry, naive, d->rays, d->reference);
+    trace(g, ref, d->rays, d->reference);
   std::fprintf(stderr, "bench_trace: done in %.1f s\n", seconds_since(t0));
 
-  d->naive_stride = bs.boxes.size() > 1000 ? kNaiveStride : 1;
-  for (std::size_t i = 0; i < d->rays.size(); i += d->naive_stride) d->naive_sample.push_back(d->rays[i]);
   std::vector<Hit> scratch;
   std::vector<std::uint8_t> scratch_blocked;
   double best = 1e30;
   for (int rep = 0; rep < 3; ++rep) {
     const double t1 = thread_cpu_seconds();
     if (any_hit)
-      occlude(bs.scene.geometry, naive, d->naive_sample, scratch_blocked);
+      occlude(g, naive, d->naive_sample, scratch_blocked);
     else
-      trace(bs.scene.geometry, naive, d->naive_sample, scratch);
+      trace(g, naive, d->naive_sample, scratch);
     best = std::min(best, thread_cpu_seconds() - t1);
+  }
+  if (chained) {
+    std::size_t bad = 0;
+    for (std::size_t k = 0; k < d->naive_sample.size(); ++k) {
+      const std::size_t i = k * d->naive_stride;
+      bad += any_hit ? scratch_blocked[k] != d->blocked[i]
+                     : scratch[k].prim != d->reference[i].prim ||
+                           std::bit_cast<std::uint32_t>(scratch[k].t) != std::bit_cast<std::uint32_t>(d->reference[i].t);
+    }
+    if (bad) {
+      std::fprintf(stderr, "bench_trace: the bvh reference for %s/%s differs from naive on %zu of %zu sampled rays\n",
+                   scene_name.c_str(), ray_set_name(set), bad, d->naive_sample.size());
+      std::exit(1);
+    }
   }
   d->naive_s_per_ray = best / double(d->naive_sample.size());
   slot = std::move(d);
@@ -311,8 +366,7 @@ std::string blocked_mismatch(const std::vector<std::uint8_t>& got, const std::ve
 bool build_or_skip(benchmark::State& state, const std::string& name, const json& knobs,
                    const BenchScene& bs, accel::AnyAccel& out) {
   try {
-    out = accel::make_accel(name, knobs, bs.boxes);
-    tracer::attach_geometry(out, bs.scene.geometry);
+    out = tracer::build_accel(name, knobs, bs.scene.geometry, bs.boxes);
     return true;
   } catch (const knobs::ConfigError& e) {
     state.SkipWithError(e.what());
@@ -534,8 +588,7 @@ void bm_build(benchmark::State& state, const std::string& scene_name, const std:
   accel::AnyAccel a;
   if (!build_or_skip(state, name, knobs, bs, a)) return;
   for (auto _ : state) {
-    a = accel::make_accel(name, knobs, bs.boxes);
-    tracer::attach_geometry(a, bs.scene.geometry);
+    a = tracer::build_accel(name, knobs, bs.scene.geometry, bs.boxes);
     benchmark::DoNotOptimize(&a);
   }
   const accel::BuildStats& s = accel::stats_of(a);
@@ -545,8 +598,8 @@ void bm_build(benchmark::State& state, const std::string& scene_name, const std:
   state.counters["memory_MiB"] = double(s.memory_bytes) / double(1 << 20);
 }
 
-/// Times building one structure at its default knobs, the scene's spheres attached (what a
-/// render builds); memory per primitive as a counter.
+/// Times building one structure at its default knobs, the scene's spheres or triangles attached
+/// (what a render builds); memory per primitive as a counter.
 void bm_build_default(benchmark::State& state, const std::string& scene_name, const std::string& name,
                       const json& knobs) {
   const BenchScene& bs = scene_named(scene_name);
@@ -554,13 +607,15 @@ void bm_build_default(benchmark::State& state, const std::string& scene_name, co
   if (!build_or_skip(state, name, knobs, bs, a)) return;
   for (auto _ : state) {
     a = accel::AnyAccel();
-    a = accel::make_accel(name, knobs, bs.boxes);
-    tracer::attach_geometry(a, bs.scene.geometry);
+    a = tracer::build_accel(name, knobs, bs.scene.geometry, bs.boxes);
     benchmark::DoNotOptimize(&a);
   }
   const accel::BuildStats& s = accel::stats_of(a);
   state.counters["nodes"] = double(s.nodes);
   state.counters["bytes_per_prim"] = double(s.memory_bytes) / double(std::max<std::size_t>(bs.boxes.size(), 1));
+  // The structure's own build time: for Embree's native peers, the native build alone (their
+  // stats_note), where the time above also counts the user-geometry build and copies before it.
+  state.counters["reported_build_ms"] = s.build_ms;
   state.SetLabel(accel::name_of(a) + " " + accel::params_of(a).dump());
 }
 
@@ -618,23 +673,40 @@ benchmark::internal::Benchmark* timed_ms(benchmark::internal::Benchmark* b) {
   });
 }
 
+/// Whether a structure is worth a row on a scene: each of Embree's native peers only where its
+/// primitives are the scene's (elsewhere it is the user-geometry adapter, `embree`, again).
+bool applies(const std::string& structure, bool mesh_scene) {
+  if (structure == accel::EmbreePoints::kName) return !mesh_scene;
+  if (structure == accel::EmbreeTriangles::kName) return mesh_scene;
+  return true;
+}
+
+/// The mesh scenes this run has (none without ../shared/meshes, with a message).
+std::vector<std::string> available_mesh_scenes() {
+  try {
+    scenes_gen::model_path("bunny");
+  } catch (const scenes_gen::GenError& e) {
+    std::fprintf(stderr, "bench_trace: %s; the mesh benchmarks are left out\n", e.what());
+    return {};
+  }
+  return kMeshScenes;
+}
+
 void register_benchmarks() {
-  for (const char* scene : {"spheres8000", "five"})
-    for (RaySet set : {RaySet::Coherent, RaySet::Packets, RaySet::Incoherent})
+  std::vector<std::string> trace_scenes = {"spheres8000", "five"};
+  const std::vector<std::string> mesh_scenes = available_mesh_scenes();
+  trace_scenes.insert(trace_scenes.end(), mesh_scenes.begin(), mesh_scenes.end());
+  for (const std::string& scene : trace_scenes)
+    for (RaySet set : {RaySet::Coherent, RaySet::Packets, RaySet::Incoherent, RaySet::Shadow})
       for (const Config& c : trace_configs()) {
-        const std::string bm =
-            std::string("Trace/") + scene + "/" + ray_set_name(set) + "/" + c.label;
-        timed_ms(benchmark::RegisterBenchmark(bm.c_str(), bm_trace, std::string(scene), set, c.name, c.knobs)
-            );
+        if (!applies(c.name, is_mesh_scene(scene))) continue;
+        const std::string bm = "Trace/" + scene + "/" + ray_set_name(set) + "/" + c.label;
+        timed_ms(benchmark::RegisterBenchmark(bm.c_str(), bm_trace, scene, set, c.name, c.knobs));
       }
-  for (const char* scene : {"spheres8000", "five"})
-    for (const Config& c : trace_configs()) {
-      const std::string bm = std::string("Trace/") + scene + "/shadow/" + c.label;
-      timed_ms(benchmark::RegisterBenchmark(bm.c_str(), bm_trace, std::string(scene), RaySet::Shadow, c.name, c.knobs)
-          );
-    }
-  // Whole renders: spheres8000 (Whitted, 1024x768) and every SPD scene (256x256).
+  // Whole renders: spheres8000 (Whitted, 1024x768), every SPD scene (256x256) and the mesh
+  // scenes (Whitted, 640x480).
   std::vector<RenderCase> renders = {{"spheres8000", "", false, kWidth, kHeight}};
+  for (const std::string& scene : mesh_scenes) renders.push_back({scene, "", false, 640, 480});
   const std::filesystem::path spd_dir = ACCELBENCH_SPD_DIR;
   std::vector<std::filesystem::path> spd_files;
   std::error_code ec;
@@ -650,7 +722,7 @@ void register_benchmarks() {
     if (s.peer && s.built) peers.push_back(s.name);
   for (const RenderCase& rc : renders)
     for (const Config& c : configs) {
-      if (c.name == "naive") continue;  // hours per render
+      if (c.name == "naive" || !applies(c.name, is_mesh_scene(rc.label))) continue;  // naive: hours per render
       const std::string bm = "Render/" + rc.label + "/" + c.label;
       timed_ms(benchmark::RegisterBenchmark(bm.c_str(), bm_render, rc, c.name, c.knobs)
           ->UseManualTime()
@@ -658,6 +730,7 @@ void register_benchmarks() {
           );
       if (accel::find_structure(c.name)->peer) continue;
       for (const std::string& peer : peers) {
+        if (!applies(peer, is_mesh_scene(rc.label))) continue;
         const std::string paired = "RenderPair/" + rc.label + "/" + c.label + "/vs_" + peer;
         timed_ms(benchmark::RegisterBenchmark(paired.c_str(), bm_render_pair, rc, c.name, c.knobs, peer,
                                               std::make_shared<int>(0))
@@ -674,13 +747,19 @@ void register_benchmarks() {
           ->ArgsProduct({{8, 16, 64}, {1, 2, 4, 8, 16}})
           );
     }
-  // Build time at default knobs, every structure (Embree included), and on a million spheres.
-  for (const char* scene : {"spheres8000", "random1M"})
+  // Build time at default knobs, every structure (Embree included), and on a million spheres and
+  // the meshes: there the BVHs and Embree only.
+  std::vector<std::string> build_scenes = {"spheres8000", "random1M"};
+  build_scenes.insert(build_scenes.end(), mesh_scenes.begin(), mesh_scenes.end());
+  for (const std::string& scene : build_scenes)
     for (const Config& c : trace_configs()) {
-      if (std::string(scene) == "random1M" && c.name != "bvh" && c.name != "bvh4" && c.name != "bvh8" && c.name != "embree")
+      const bool large = scene != "spheres8000";
+      if (!applies(c.name, is_mesh_scene(scene)) ||
+          (large && c.name != "bvh" && c.name != "bvh4" && c.name != "bvh8" && c.name != "embree" &&
+           c.name != "embree_triangles"))
         continue;
-      const std::string bm = std::string("BuildDefault/") + scene + "/" + c.label;
-      timed_ms(benchmark::RegisterBenchmark(bm.c_str(), bm_build_default, std::string(scene), c.name, c.knobs)
+      const std::string bm = "BuildDefault/" + scene + "/" + c.label;
+      timed_ms(benchmark::RegisterBenchmark(bm.c_str(), bm_build_default, scene, c.name, c.knobs)
           );
     }
   // Build time over the tree knobs; the BVH's target is <= 5 ms at (64, 4) for spheres8000.
