@@ -97,7 +97,9 @@ std::vector<json> parse_knob_values(const json& j, const std::string& pointer) {
 
 std::string default_scene_name(const SceneSpec& s) {
   if (s.source == SceneSource::File) return std::filesystem::path(s.file).stem().string();
-  return s.count ? s.generator + "-" + std::to_string(*s.count) : s.generator;
+  const std::string base = s.model.empty() ? s.generator
+                                           : s.generator + "-" + std::filesystem::path(s.model).stem().string();
+  return s.count ? base + "-" + std::to_string(*s.count) : base;
 }
 
 SceneSpec parse_scene(const json& j, const std::string& pointer) {
@@ -109,7 +111,7 @@ SceneSpec parse_scene(const json& j, const std::string& pointer) {
     }
   }
   if (!j.is_object()) fail(pointer, "a scene must be a string or an object, got " + brief(j));
-  require_keys(j, pointer, {"name", "generator", "seed", "count", "file"});
+  require_keys(j, pointer, {"name", "generator", "seed", "count", "model", "file"});
   SceneSpec s;
   const bool has_gen = j.contains("generator"), has_file = j.contains("file");
   if (has_gen == has_file) fail(pointer, "a scene needs exactly one of 'generator' or 'file'");
@@ -117,13 +119,19 @@ SceneSpec parse_scene(const json& j, const std::string& pointer) {
     s.source = SceneSource::File;
     s.file = get_string(j["file"], child(pointer, "file"));
     if (s.file.empty()) fail(child(pointer, "file"), "must not be empty");
-    for (const char* k : {"seed", "count"})
+    for (const char* k : {"seed", "count", "model"})
       if (j.contains(k)) fail(child(pointer, k), "only generator scenes take this key");
   } else {
     s.generator = get_string(j["generator"], child(pointer, "generator"));
     if (s.generator.empty()) fail(child(pointer, "generator"), "must not be empty");
     if (j.contains("seed")) s.seed = get_uint64(j["seed"], child(pointer, "seed"));
     if (j.contains("count")) s.count = int(get_integer(j["count"], child(pointer, "count"), 0, scenes_gen::kMaxCount));
+    if (j.contains("model")) {
+      s.model = get_string(j["model"], child(pointer, "model"));
+      if (s.model.empty()) fail(child(pointer, "model"), "must not be empty");
+      if (!scenes_gen::generator_takes_model(s.generator))
+        fail(child(pointer, "model"), "generator '" + s.generator + "' takes no model (only mesh and mesh_grid do)");
+    }
   }
   s.name = j.contains("name") ? get_string(j["name"], child(pointer, "name")) : default_scene_name(s);
   if (s.name.empty()) fail(child(pointer, "name"), "must not be empty");
@@ -410,6 +418,7 @@ json to_json(const SceneSpec& s) {
     j["generator"] = s.generator;
     j["seed"] = s.seed;
     if (s.count) j["count"] = *s.count;
+    if (!s.model.empty()) j["model"] = s.model;
   }
   return j;
 }

@@ -35,6 +35,7 @@ struct SceneSpec {
   std::string generator;            ///< Generator name (source Generator).
   std::uint64_t seed = 1;           ///< Generator seed (source Generator).
   std::optional<int> count;         ///< Generator size knob; unset = its default (source Generator).
+  std::string model;                ///< Model of the mesh generators (source Generator); "" = theirs.
   std::string file;                 ///< Scene file path (source File).
 
   /// Family the scaling plot groups by: the generator name, or "file".

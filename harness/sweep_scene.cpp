@@ -10,6 +10,7 @@ tracer::Scene load_sweep_scene(const SceneSpec& spec) {
   scenes_gen::GenOptions options;
   options.seed = spec.seed;
   options.count = spec.count;
+  options.model = spec.model;
   return scenes_gen::generate(spec.generator, options);
 }
 

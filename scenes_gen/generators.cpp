@@ -38,6 +38,8 @@ constexpr std::array kGenerators = {
           "model file, framed on a floor", false, make_mesh, true},
     Entry{"mesh_grid", "--count N triangles (default 1000000) of instanced copies of --model (default bunny), "
           "flattened", true, make_mesh_grid, true},
+    Entry{"mesh_caustic", "--model NAME (default bunny) in glass on a diffuse floor under a point light: its caustic "
+          "(photon mapping)", false, make_mesh_caustic, true},
     Entry{"tessellated_spheres", "spheres8000 with each sphere an icosphere; --count is its subdivision level 0-3 "
           "(default 1: 640,000 triangles)", true, make_tessellated_spheres},
 };
@@ -67,6 +69,11 @@ tracer::Scene generate(std::string_view name, const GenOptions& options) {
   tracer::Scene scene = e->make(options);
   scene.geometry.finalize();
   return scene;
+}
+
+bool generator_takes_model(std::string_view name) {
+  const Entry* e = find(name);
+  return e && e->takes_model;
 }
 
 std::vector<std::string> generator_names() {

@@ -36,6 +36,9 @@ tracer::Scene generate(std::string_view name, const GenOptions& options);
 /// Every generator name, in display order.
 std::vector<std::string> generator_names();
 
+/// True when generator `name` takes a model (GenOptions::model): mesh and mesh_grid.
+bool generator_takes_model(std::string_view name);
+
 /// One line saying what generator `name` makes and which options it takes ("" if unknown).
 std::string generator_description(std::string_view name);
 

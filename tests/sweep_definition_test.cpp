@@ -71,6 +71,10 @@ TEST(SweepDefinition, ErrorsNameTheJsonPointer) {
       {{{"mode", "phong"}}, "/mode: unknown integrator \"phong\" (known: whitted, spd"},
       {{{"mode", "spd"}, {"integrator", "spd"}}, "/mode: give \"integrator\" or its older name \"mode\", not both"},
       {{{"validate_resolution", "64"}}, "/validate_resolution: expected WIDTHxHEIGHT"},
+      {{{"scenes", {{{"generator", "random"}, {"model", "bunny"}}}}},
+       "/scenes/0/model: generator 'random' takes no model (only mesh and mesh_grid do)"},
+      {{{"scenes", {{{"file", "a.json"}, {"model", "bunny"}}}}}, "/scenes/0/model: only generator scenes take this key"},
+      {{{"scenes", {{{"generator", "mesh"}, {"model", ""}}}}}, "/scenes/0/model: must not be empty"},
   };
   for (const auto& c : cases) {
     json j = minimal();
@@ -83,7 +87,8 @@ TEST(SweepDefinition, ErrorsNameTheJsonPointer) {
 
 TEST(SweepDefinition, RoundTripsThroughItsNormalForm) {
   const json j = {{"name", "t"},
-                  {"scenes", {"five", "random:50", {{"file", "a/b/teapot.nff"}}}},
+                  {"scenes", {"five", "random:50", {{"file", "a/b/teapot.nff"}},
+                              {{"generator", "mesh_grid"}, {"model", "../meshes/ogre.obj"}, {"count", 5000}}}},
                   {"structures", {"naive", {{"name", "kdtree"}, {"split", "sah"}, {"max_leaf_size", {1, 2}}}}},
                   {"knobs", {{"max_depth", {4, 8}}}},
                   {"resolution", "32x24"}};
@@ -92,6 +97,8 @@ TEST(SweepDefinition, RoundTripsThroughItsNormalForm) {
   EXPECT_EQ(d.scenes[1].count, 50);
   EXPECT_FALSE(d.scenes[0].count.has_value());
   EXPECT_EQ(d.scenes[2].name, "teapot");
+  EXPECT_EQ(d.scenes[3].name, "mesh_grid-ogre-5000") << "a model names its scene";
+  EXPECT_EQ(d.scenes[3].model, "../meshes/ogre.obj");
   EXPECT_EQ(d.width, 32);
   const json normal = harness::to_json(d);
   EXPECT_EQ(harness::to_json(harness::parse_sweep_definition(normal)), normal);
