@@ -39,6 +39,7 @@ struct StabilityFlags {
   int threads = 0;
   std::string out;
   std::string images;
+  std::vector<std::string> params;  ///< --param NAME=VALUE: the integrator's knobs.
 };
 
 int run(const StabilityFlags& f) {
@@ -51,7 +52,13 @@ int run(const StabilityFlags& f) {
   o.scene_label = f.scene;
   o.integrator = &integrators::named(f.spd ? "spd" : f.integrator.empty() ? "whitted" : f.integrator,
                                    "--integrator");
-  o.integrator->params({{tracer::kPrecisionKnob, tracer::precision_name(tracer::Precision::Double)}});  // one that lacks the knob fails here
+  o.integrator_params = integrators::parse_knob_items(f.params, "--param");
+  if (o.integrator_params.contains(tracer::kPrecisionKnob))
+    throw std::runtime_error("--param: the suite renders naive in float and in double itself; leave out 'precision'");
+  // Checks the knobs, and that the integrator has `precision` (one that lacks it fails here).
+  nlohmann::json checked = o.integrator_params;
+  checked[tracer::kPrecisionKnob] = tracer::precision_name(tracer::Precision::Double);
+  o.integrator->params(checked);
   parse_image_size(f.resolution, "--resolution", o.width, o.height);
   o.structures = parse_checked_structures(f.accel.empty() ? default_structures() : f.accel, "--accel");
   o.variants = select_variants(f.variants, "--variants");
@@ -62,7 +69,8 @@ int run(const StabilityFlags& f) {
 
   std::cerr << "stability " << f.scene << ": " << describe_scene(scene) << "; " << o.variants.size()
             << " variants at " << o.width << "x" << o.height << ", integrator "
-            << o.integrator->name << ", naive in float" << (o.reference ? " and double" : "")
+            << o.integrator->name << (o.integrator_params.empty() ? "" : " " + o.integrator_params.dump())
+            << ", naive in float" << (o.reference ? " and double" : "")
             << " and " << o.structures.size() << " structures\n";
   const nlohmann::json doc = run_stability(scene, o, std::cerr);
   std::cout << stability_table(doc);
@@ -105,6 +113,8 @@ void add_stability_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--threads", flags->threads, "Render threads; 0 = all cores")
       ->check(CLI::Range(0, 4096));
   cmd->add_option("-o,--out", flags->out, "Results JSON to write (results/schema/stability.schema.json)");
+  cmd->add_option("--param", flags->params,
+                  "An integrator knob for every render, NAME=VALUE (repeatable), e.g. --param triangle=moller");
   cmd->add_option("--images", flags->images, "Directory for a PNG of every render (float, double)");
   cmd->callback([flags, &exit_code] { exit_code = run(*flags); });
 }

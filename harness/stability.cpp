@@ -80,7 +80,8 @@ Rendered render_once(const tracer::Scene& scene, const accel::AnyAccel& structur
   ro.width = o.width;
   ro.height = o.height;
   ro.threads = o.threads;
-  const json knobs = {{tracer::kPrecisionKnob, tracer::precision_name(precision)}};
+  json knobs = o.integrator_params;
+  knobs[tracer::kPrecisionKnob] = tracer::precision_name(precision);
   Rendered r;
   r.result = tracer::render(scene, structure, ro, *o.integrator, knobs);
   r.non_finite = tracer::count_non_finite(r.result.image);
@@ -192,6 +193,7 @@ json run_stability(const tracer::Scene& scene, const StabilityOptions& o, std::o
               {"schema_version", 1},
               {"scene", o.scene_label},
               {"integrator", std::string(o.integrator->name)},
+              {"integrator_params", o.integrator_params},
               {"resolution", {o.width, o.height}},
               {"threads", tracer::resolve_threads(o.threads)},
               {"reference", o.reference ? "naive in double" : "none"},

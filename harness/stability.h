@@ -36,6 +36,9 @@ std::string default_structures();
 struct StabilityOptions {
   std::string scene_label;                 ///< Scene file, as given (recorded in the JSON).
   const tracer::Integrator* integrator = nullptr;  ///< whitted or spd (integrators/integrators.h).
+  /// The integrator's knobs for every render (e.g. {"triangle": "moller"}); the suite sets
+  /// `precision` itself.
+  nlohmann::json integrator_params = nlohmann::json::object();
   std::vector<CheckedStructure> structures;   ///< Checked against naive on every variant.
   std::vector<StabilityVariant> variants;  ///< Base first.
   int width = 96;                          ///< Image width, pixels.

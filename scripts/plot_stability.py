@@ -31,8 +31,11 @@ GROUPS = [("translate_x", "translated along x by 10^k"),
 
 
 def scene_name(doc):
-    name = os.path.basename(doc["scene"])
-    return os.path.splitext(name)[0]
+    name = os.path.splitext(os.path.basename(doc["scene"]))[0]
+    params = doc.get("integrator_params") or {}
+    if params:  # the same scene with other integrator knobs (triangle=moller) is a panel of its own
+        name += " (" + ", ".join(f"{k}={v}" for k, v in sorted(params.items())) + ")"
+    return name
 
 
 def series(doc, group, precision):

@@ -113,6 +113,33 @@ TEST_F(Stability, CommandRunsChecksEveryStructureAndWritesJsonThatFollowsTheSche
   EXPECT_FALSE(valid(broken));
 }
 
+// The integrator's knobs reach every render (the triangle routine: a row of its own per routine
+// in scripts/run), and the results say which were given.
+TEST_F(Stability, IntegratorKnobsReachEveryRenderAndAreRecorded) {
+  ASSERT_EQ(accelbench("gen cornell -o " + path("cornell.json")).status, 0);
+  for (const char* routine : {"watertight", "moller"}) {
+    const std::string out = path(std::string(routine) + ".json");
+    const cli_run::CliRun r = accelbench("stability " + path("cornell.json") + " --param triangle=" + routine +
+                                         " --resolution 32x24 --threads 2 --accel bvh8 --variants base,translate_x_1e2 --out " + out);
+    ASSERT_EQ(r.status, 0) << r.output;
+    EXPECT_NE(r.output.find(std::string("{\"triangle\":\"") + routine + "\"}"), std::string::npos) << r.output;
+    std::ifstream in(out);
+    const json doc = json::parse(in);
+    ASSERT_TRUE(valid(doc));
+    EXPECT_EQ(doc["integrator_params"], json({{"triangle", routine}}));
+    EXPECT_EQ(doc["failures"], 0);
+  }
+  for (const auto& [flag, names] : {std::pair<std::string, std::string>{"--param precision=double", "precision"},
+                                    {"--param triangle=fast", "triangle"},
+                                    {"--param nosuch=1", "nosuch"}}) {
+    SCOPED_TRACE(flag);
+    const cli_run::CliRun r = accelbench("stability " + path("cornell.json") + " " + flag);
+    EXPECT_NE(r.status, 0);
+    EXPECT_NE(r.output.find(names), std::string::npos) << r.output;
+    EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+  }
+}
+
 TEST_F(Stability, BadInputIsOneLineAndAFailingExit) {
   ASSERT_EQ(accelbench("gen five -o " + path("five.json")).status, 0);
   for (const auto& [flags, names] :
