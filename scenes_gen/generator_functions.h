@@ -19,5 +19,6 @@ tracer::Scene make_furnace(const GenOptions& options);
 tracer::Scene make_mesh(const GenOptions& options);  // mesh_scenes.cpp
 tracer::Scene make_mesh_grid(const GenOptions& options);
 tracer::Scene make_tessellated_spheres(const GenOptions& options);
+tracer::Scene make_mesh_caustic(const GenOptions& options);  // photon_scenes.cpp
 
 }  // namespace scenes_gen
