@@ -410,8 +410,13 @@ MeshTransform read_mesh_transform(const json& v, const std::string& path) {
   return t;
 }
 
+/// The model files one scene has read, by path: a file that many meshes place (mesh_grid's
+/// instances) is read and checked once.
+using LoadedMeshes = std::map<std::string, MeshData>;
+
 /// A mesh from a model file, placed by its transform, appended to the triangles.
-void read_mesh_file(const Object& o, std::uint32_t material, const SceneReadContext& context, Scene& scene) {
+void read_mesh_file(const Object& o, std::uint32_t material, const SceneReadContext& context, LoadedMeshes& loaded,
+                    Scene& scene) {
   for (const char* inline_key : {"vertices", "indices", "normals"})
     if (o.has(inline_key))
       fail(o.path(inline_key), "a mesh has either \"file\" or inline vertices and indices, not both");
@@ -424,21 +429,23 @@ void read_mesh_file(const Object& o, std::uint32_t material, const SceneReadCont
                .string();
   if (o.has("transform")) m.transform = read_mesh_transform(o["transform"], o.path("transform"));
   m.material = material;
-  MeshData mesh;
-  try {
-    mesh = load_mesh_file(m.path, context.max_memory_bytes);
-  } catch (const SceneError& e) {
-    fail(o.path("file"), e.what());
+  auto it = loaded.find(m.path);
+  if (it == loaded.end()) {
+    try {
+      it = loaded.emplace(m.path, load_mesh_file(m.path, context.max_memory_bytes)).first;
+    } catch (const SceneError& e) {
+      fail(o.path("file"), e.what());
+    }
   }
-  add_mesh(scene, mesh, std::move(m));
+  add_mesh(scene, it->second, std::move(m));
 }
 
 void read_mesh(const json& v, const std::string& path, const MaterialIndex& mats, const SceneReadContext& context,
-               Scene& scene) {
+               LoadedMeshes& loaded, Scene& scene) {
   Geometry& g = scene.geometry;
   const Object o(v, path, {"file", "transform", "vertices", "indices", "normals", "material"}, "mesh");
   const std::uint32_t material = mats.lookup(o);
-  if (o.has("file")) return read_mesh_file(o, material, context, scene);
+  if (o.has("file")) return read_mesh_file(o, material, context, loaded, scene);
   if (o.has("transform")) fail(o.path("transform"), "applies to a mesh read from a \"file\" only");
   const json& vs = read_array(o.require("vertices"), o.path("vertices"));
   std::vector<Vec3> points(vs.size());
@@ -639,8 +646,9 @@ Scene scene_from_json(const json& doc, const SceneReadContext& context) {
   });
   for_each_element(doc, "triangles",
                    [&](const json& v, const std::string& p) { read_triangle(v, p, mats, g); });
+  LoadedMeshes loaded;
   for_each_element(doc, "meshes",
-                   [&](const json& v, const std::string& p) { read_mesh(v, p, mats, context, scene); });
+                   [&](const json& v, const std::string& p) { read_mesh(v, p, mats, context, loaded, scene); });
   for_each_element(doc, "cones",
                    [&](const json& v, const std::string& p) { read_cone(v, p, mats, g); });
   for_each_element(doc, "polygons",
