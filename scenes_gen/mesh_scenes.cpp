@@ -145,17 +145,22 @@ tracer::Scene make_tessellated_spheres(const GenOptions& options) {
     throw GenError("tessellated_spheres: --count is the subdivision level, 0-3 (3: 10,240,000 triangles), got " +
                    std::to_string(level));
   // spheres8000 itself, then every sphere replaced by an icosphere of the same centre, radius and
-  // material.
+  // material, shaded smooth: each vertex carries the sphere's own normal there (the unit
+  // icosphere's vertex), as a tessellated model would.
   tracer::Scene scene = make_spheres8000(options);
   const tracer::MeshData unit = icosphere(level);
   std::vector<tracer::Sphere> spheres;
   spheres.swap(scene.geometry.spheres);
-  scene.geometry.triangles.reserve(spheres.size() * unit.triangles.size());
+  tracer::Geometry& g = scene.geometry;
+  g.triangles.reserve(spheres.size() * unit.triangles.size());
+  g.vertex_normals.reserve(3 * spheres.size() * unit.triangles.size());
   std::vector<tracer::Vec3> placed(unit.vertices.size());
   for (const tracer::Sphere& s : spheres) {
     for (std::size_t i = 0; i < placed.size(); ++i) placed[i] = s.center + s.radius * unit.vertices[i];
-    for (const auto& t : unit.triangles)
-      scene.geometry.triangles.push_back({placed[t[0]], placed[t[1]], placed[t[2]], s.material, -1});
+    for (const auto& t : unit.triangles) {
+      g.triangles.push_back({placed[t[0]], placed[t[1]], placed[t[2]], s.material, std::int32_t(g.vertex_normals.size())});
+      for (const std::uint32_t v : t) g.vertex_normals.push_back(unit.vertices[v]);
+    }
   }
   return scene;
 }
