@@ -151,6 +151,43 @@ class EmbreeNative {
   bool native_ = false;  ///< The scene holds Embree's own primitives.
 };
 
+/// A registered native peer with the parameter struct P (the Embree knobs under its own name):
+/// what embree_points and embree_triangles add to EmbreeNative alike.
+template <class P>
+class EmbreeNativePeer : public EmbreeNative {
+ public:
+  using Params = P;
+  /// The peer we measure against, not one of ours.
+  static constexpr bool kPeer = true;
+  /// Its hits come from Embree's own routine, not ours: equal to naive within a tolerance.
+  static constexpr bool kExact = false;
+
+  EmbreeNativePeer() = default;
+  EmbreeNativePeer(std::span<const Aabb> boxes, const P& params, const BuildLimits& limits, const char* owner)
+      : EmbreeNative(boxes, params, limits, owner), params_(params) {
+    P::knobs().validate(params_);
+  }
+  const P& params() const { return params_; }
+
+ private:
+  P params_;
+};
+
+}  // namespace accel
+
+#else  // Embree 3 not found
+
+namespace accel {
+
+/// Stands in for a native peer in a build without Embree 3; never constructed.
+template <class P>
+struct EmbreeNativePeer {
+  using Params = P;
+  static constexpr bool kPeer = true;
+  static constexpr bool kExact = false;
+  static constexpr const char* kMissing = "not built (Embree 3 was not found; run scripts/setup)";
+};
+
 }  // namespace accel
 
 #endif

@@ -54,10 +54,14 @@ struct EmbreePointsParams : EmbreeParams {
   static const knobs::KnobTable<EmbreePointsParams>& knobs();
 };
 
-/// Knobs of embree_triangles: the adapter's, under its own name, with Embree's default build
-/// (not robust) as the default, the bar users know; robust = true is its watertight mode.
+/// Knobs of embree_triangles: the adapter's, under its own name, with Embree's own defaults as
+/// the defaults (RTC_BUILD_QUALITY_MEDIUM, no scene flags), the bar users know; robust = true is
+/// its watertight mode, build_quality = high its SAH build with spatial splits.
 struct EmbreeTrianglesParams : EmbreeParams {
-  EmbreeTrianglesParams() { robust = false; }
+  EmbreeTrianglesParams() {
+    build_quality = EmbreeQuality::Medium;
+    robust = false;
+  }
   static const knobs::KnobTable<EmbreeTrianglesParams>& knobs();
 };
 

@@ -14,55 +14,27 @@
 
 namespace accel {
 
-#if ACCELBENCH_HAVE_EMBREE
-
-class EmbreePoints : public EmbreeNative {
+class EmbreePoints : public EmbreeNativePeer<EmbreePointsParams> {
  public:
-  using Params = EmbreePointsParams;
   static constexpr const char* kName = "embree_points";
   static constexpr const char* kSummary =
       "Embree 3's own spheres (RTC_GEOMETRY_TYPE_SPHERE_POINT) and its sphere routine: a peer checked "
       "within a tolerance";
-  /// The peer we measure against, not one of ours.
-  static constexpr bool kPeer = true;
-  /// Its hits come from Embree's sphere routine, not ours: equal to naive within a tolerance.
-  static constexpr bool kExact = false;
 
+#if ACCELBENCH_HAVE_EMBREE
   EmbreePoints() = default;
   EmbreePoints(std::span<const Aabb> boxes, const Params& params, const BuildLimits& limits)
-      : EmbreeNative(boxes, params, limits, kName), params_(params) {
-    Params::knobs().validate(params_);
-  }
+      : EmbreeNativePeer(boxes, params, limits, kName) {}
 
   /// Rebuilds the scene with `spheres` (spheres[i] is primitive i) as Embree's sphere points.
   /// Throws knobs::ConfigError on Embree's errors and the memory budget.
   void attach_spheres(std::span<const SphereShape> spheres);
-
-  const Params& params() const { return params_; }
   static const char* stats_note() {
     return "embree_points: nodes, leaves, depth, sah_cost, nodes_visited, boxes_tested and (on its own "
            "spheres) prims_tested are not visible through Embree's API and are reported as 0; build_ms "
            "is the sphere-point build (the user-geometry build over the boxes before it is not counted)";
   }
-
- private:
-  Params params_;
-};
-
-#else  // Embree 3 not found
-
-/// Stands in for embree_points in a build without Embree 3; never constructed.
-struct EmbreePoints {
-  using Params = EmbreePointsParams;
-  static constexpr const char* kName = "embree_points";
-  static constexpr const char* kSummary =
-      "Embree 3's own spheres (RTC_GEOMETRY_TYPE_SPHERE_POINT) and its sphere routine: a peer checked "
-      "within a tolerance";
-  static constexpr bool kPeer = true;
-  static constexpr bool kExact = false;
-  static constexpr const char* kMissing = "not built (Embree 3 was not found; run scripts/setup)";
-};
-
 #endif
+};
 
 }  // namespace accel

@@ -1,7 +1,8 @@
 #pragma once
 // Embree's own triangles as the peer on meshes: RTC_GEOMETRY_TYPE_TRIANGLE, Embree's BVH over its
-// triangle leaves and Embree's ray-triangle routine. Its default build (robust = false) is the
-// bar users know; robust = true is RTC_SCENE_FLAG_ROBUST, Embree's watertight mode. Checked
+// triangle leaves and Embree's ray-triangle routine. Its default build (Embree's own defaults:
+// medium quality, not robust) is the bar users know; robust = true is RTC_SCENE_FLAG_ROBUST,
+// Embree's watertight mode, and build_quality = high its SAH build with spatial splits. Checked
 // against naive within a tolerance (the same triangle for >= 99.9% of rays, t within 1e-5
 // relative), not bit for bit.
 //
@@ -17,31 +18,21 @@
 
 namespace accel {
 
-#if ACCELBENCH_HAVE_EMBREE
-
-class EmbreeTriangles : public EmbreeNative {
+class EmbreeTriangles : public EmbreeNativePeer<EmbreeTrianglesParams> {
  public:
-  using Params = EmbreeTrianglesParams;
   static constexpr const char* kName = "embree_triangles";
   static constexpr const char* kSummary =
       "Embree 3's own triangles (RTC_GEOMETRY_TYPE_TRIANGLE) and its triangle routine: a peer checked "
       "within a tolerance";
-  /// The peer we measure against, not one of ours.
-  static constexpr bool kPeer = true;
-  /// Its hits come from Embree's triangle routine, not ours: equal to naive within a tolerance.
-  static constexpr bool kExact = false;
 
+#if ACCELBENCH_HAVE_EMBREE
   EmbreeTriangles() = default;
   EmbreeTriangles(std::span<const Aabb> boxes, const Params& params, const BuildLimits& limits)
-      : EmbreeNative(boxes, params, limits, kName), params_(params) {
-    Params::knobs().validate(params_);
-  }
+      : EmbreeNativePeer(boxes, params, limits, kName) {}
 
   /// Rebuilds the scene with `triangles` (triangles[i] is primitive i) as one Embree triangle
   /// mesh. Throws knobs::ConfigError on Embree's errors and the memory budget.
   void attach_triangles(std::span<const TriangleShape> triangles);
-
-  const Params& params() const { return params_; }
   static const char* stats_note() {
     return "embree_triangles: nodes, leaves, depth, sah_cost, nodes_visited, boxes_tested and (on its "
            "own triangles) prims_tested are not visible through Embree's API and are reported as 0; "
@@ -49,25 +40,7 @@ class EmbreeTriangles : public EmbreeNative {
            "nor the vertex sharing); memory_bytes is what Embree holds, its vertex and index buffers "
            "included";
   }
-
- private:
-  Params params_;
-};
-
-#else  // Embree 3 not found
-
-/// Stands in for embree_triangles in a build without Embree 3; never constructed.
-struct EmbreeTriangles {
-  using Params = EmbreeTrianglesParams;
-  static constexpr const char* kName = "embree_triangles";
-  static constexpr const char* kSummary =
-      "Embree 3's own triangles (RTC_GEOMETRY_TYPE_TRIANGLE) and its triangle routine: a peer checked "
-      "within a tolerance";
-  static constexpr bool kPeer = true;
-  static constexpr bool kExact = false;
-  static constexpr const char* kMissing = "not built (Embree 3 was not found; run scripts/setup)";
-};
-
 #endif
+};
 
 }  // namespace accel

@@ -324,7 +324,7 @@ TEST(EmbreePoints, AgreesWithNaiveWithinItsToleranceAtEveryIsa) {
                                   "naive");
 }
 
-// Embree's triangles, in its default and its robust build, on the standard bunny (or, without
+// Embree's triangles, in its default, robust and high-quality builds, on the standard bunny (or, without
 // the shared models, spheres8000 as 160,000 triangles), against bvh8 (bit-identical to naive on
 // every mesh scene of the oracle; naive itself would take minutes here).
 TEST(EmbreeTriangles, AgreesWithNaiveWithinItsToleranceAtEveryIsa) {
@@ -338,8 +338,9 @@ TEST(EmbreeTriangles, AgreesWithNaiveWithinItsToleranceAtEveryIsa) {
     o.count = 0;
     scene = scenes_gen::generate("tessellated_spheres", o);
   }
-  for (const bool robust : {false, true})
-    expect_peer_agrees_at_every_isa("embree_triangles", {{"robust", robust}}, scene, "bvh8");
+  for (const nlohmann::json& knobs : {nlohmann::json{{"robust", false}}, nlohmann::json{{"robust", true}},
+                                      nlohmann::json{{"build_quality", "high"}}})
+    expect_peer_agrees_at_every_isa("embree_triangles", knobs, scene, "bvh8");
 }
 
 TEST(EmbreeTriangles, WithOtherPrimitivesItIsTheUserGeometryAdapter) {
@@ -356,7 +357,8 @@ TEST(EmbreeTriangles, WithOtherPrimitivesItIsTheUserGeometryAdapter) {
   const accel::AnyAccel a = tracer::build_accel("embree_triangles", nullptr, scene.geometry, boxes);
   EXPECT_FALSE(std::get<accel::EmbreeTriangles>(a).native());
   EXPECT_FALSE(accel::find_structure("embree_triangles")->exact);
-  EXPECT_EQ(accel::params_of(a).at("robust"), false) << "Embree's default build is the default";
+  EXPECT_EQ(accel::params_of(a).at("robust"), false) << "Embree's own defaults are the defaults";
+  EXPECT_EQ(accel::params_of(a).at("build_quality"), "medium") << "Embree's own defaults are the defaults";
 }
 
 TEST(EmbreeTriangles, MemoryBudgetNamesIt) {
