@@ -150,10 +150,10 @@ tracer::Scene make_furnace(const GenOptions&) {
   return make_furnace_scene(1.0f, 0.5f, 100.0f);
 }
 
-// A model (the Stanford bunny by default) in glass on a diffuse floor, lit by one point light
-// above and to the side: the light it refracts gathers into a caustic on the floor beside its
-// shadow. The model keeps its own coordinates; light, camera and photon radius follow its size,
-// as the glass sphere's of Figure 5 (radius 1, light 6.5 away, power 1800 W, max_radius 0.6).
+// A model (the Stanford bunny by default) in glass on a diffuse floor, lit by one point light low
+// at its side: its shadow falls long across the floor, and the light the glass refracts gathers
+// into caustics inside it. The model keeps its own coordinates; light, camera and photon radius
+// follow its size as the glass sphere's of Figure 5 do (radius 1, power 1800 W, max_radius 0.6).
 tracer::Scene make_mesh_caustic(const GenOptions& options) {
   tracer::Scene scene = scene_around_model(model_path(options.model.empty() ? "bunny" : options.model));
   accel::Aabb bounds;
@@ -164,11 +164,11 @@ tracer::Scene make_mesh_caustic(const GenOptions& options) {
   scene.materials[0] = glass("glass", 1.5f);
   scene.materials[1] = diffuse("floor", {0.7f, 0.7f, 0.68f});
   const Vec3 centre = bounds.center();
-  scene.lights = {light_at(centre, {-2.0f, 6.2f, 0.6f}, unit, 1800.0f)};
+  scene.lights = {light_at(centre, {-3.5f, 2.6f, 1.2f}, unit, 1800.0f)};
   scene.background = {0.0f, 0.0f, 0.0f};
   // The floor beyond the model on the side away from the light, where the caustic falls.
   accel::Aabb view = bounds;
-  view.grow(Vec3(bounds.hi.x + 1.2f * unit, bounds.lo.y, bounds.center().z));
+  view.grow(Vec3(bounds.hi.x + 2.0f * unit, bounds.lo.y, bounds.center().z - 0.8f * unit));
   scene.camera = frame_bounds(view, Vec3(0.15f, 0.55f, 1.0f));
   scene.camera.width = 480;
   scene.camera.height = 360;
