@@ -93,13 +93,18 @@ T watertight_distance(const Vec3T<T>& p0, const Vec3T<T>& p1, const Vec3T<T>& p2
   const T inv_det = T(1) / det;
   const T t = t_scaled * inv_det;
   if (!(t > ray.tmin)) return kInfinityOf<T>;
-  // Keep t only where it is surely positive (pbrt-v4's bound on the error of t).
+  // Keep t only where it is surely positive (pbrt-v4's bound on the error of t). The sheared x
+  // and y are world lengths, and so is their error, a few ulps of |x| + |sx z| <= |x| + |z| with
+  // z in world units: pbrt-v4 adds the z it has scaled by 1/dz, which is another unit. With a
+  // short direction (a shadow ray of a scene scaled by 10^-4: |dir| ~ 3e-5, |z / dz| ~ 0.3 beside
+  // |x| ~ 1e-7) that bound outgrew t and dropped every hit, and the shadows with them.
   const T max_z = std::max({std::abs(az), std::abs(bz), std::abs(cz)});
+  const T max_z_world = std::max({std::abs(a[kz]), std::abs(b[kz]), std::abs(c[kz])});
   const T max_x = std::max({std::abs(ax), std::abs(bx), std::abs(cx)});
   const T max_y = std::max({std::abs(ay), std::abs(by), std::abs(cy)});
   const T delta_z = rounding_gamma<T>(3) * max_z;
-  const T delta_x = rounding_gamma<T>(5) * (max_x + max_z);
-  const T delta_y = rounding_gamma<T>(5) * (max_y + max_z);
+  const T delta_x = rounding_gamma<T>(5) * (max_x + max_z_world);
+  const T delta_y = rounding_gamma<T>(5) * (max_y + max_z_world);
   const T delta_e = T(2) * (rounding_gamma<T>(2) * max_x * max_y + delta_y * max_x + delta_x * max_y);
   const T max_e = std::max({std::abs(e0), std::abs(e1), std::abs(e2)});
   const T delta_t = T(3) * (rounding_gamma<T>(3) * max_e * max_z + delta_e * max_z + delta_z * max_e) *
