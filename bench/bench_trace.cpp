@@ -699,8 +699,12 @@ std::vector<Config> trace_configs() {
     // Embree's watertight mode and its high-quality build (spatial splits) beside its default
     // build, on the meshes.
     if (s.name == accel::EmbreeTriangles::kName) {
-      out.push_back({s.name + "_robust", s.name, {{"robust", true}}, s.knobs});
-      out.push_back({s.name + "_high", s.name, {{"build_quality", "high"}}, s.knobs});
+      accel::EmbreeTrianglesParams robust, high;
+      robust.robust = true;
+      high.build_quality = accel::EmbreeQuality::High;
+      const auto& table = accel::EmbreeTrianglesParams::knobs();
+      out.push_back({s.name + "_robust", s.name, table.changed_json(robust), s.knobs});
+      out.push_back({s.name + "_high", s.name, table.changed_json(high), s.knobs});
     }
     for (const json& k : s.knob_table) {
       if (!k.at("variant").get<bool>() || !k.contains("choices")) continue;
