@@ -155,8 +155,9 @@ TEST(Registry, BenchmarksCoverEveryBuiltStructure) {
     for (const char* set : {"coherent", "packets", "incoherent", "shadow"})
       EXPECT_NE(list.output.find("Trace/" + scene + "/" + std::string(set) + "/" + s.name + "\n"), std::string::npos)
           << s.name;
-    if (meshes && s.name != "embree_points")
+    if (meshes && s.name != "embree_points") {
       EXPECT_NE(list.output.find("Trace/bunny/coherent/" + s.name + "\n"), std::string::npos) << s.name;
+    }
     if (s.name != "naive") {
       EXPECT_NE(list.output.find("Render/" + scene + "/" + s.name + "/"), std::string::npos) << s.name;
     }
@@ -164,11 +165,12 @@ TEST(Registry, BenchmarksCoverEveryBuiltStructure) {
     // where Embree is built.
     if (ACCELBENCH_HAVE_EMBREE && s.name != "naive" && !s.peer) {
       for (const accel::StructureInfo& peer : accel::structures())
-        if (peer.peer && peer.built && (meshes || peer.name != "embree_triangles"))
+        if (peer.peer && peer.built && (meshes || peer.name != "embree_triangles")) {
           EXPECT_NE(list.output.find("RenderPair/" + std::string(scene_of(peer.name)) + "/" + s.name + "/vs_" +
                                      peer.name + "/"),
                     std::string::npos)
               << s.name << " vs " << peer.name;
+        }
     }
   }
 #else
