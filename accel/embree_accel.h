@@ -173,6 +173,36 @@ void fill_ray(RTCRay& r, const Ray& ray) {
   r.flags = 0;
 }
 
+/// A K-wide packet of `rays` (at most K) for rtcOccludedK: lane i is rays[i], valid[i] is set on
+/// those lanes, and the lanes past them are masked off and hold kUnusedLane.
+template <Interval Mode = Interval::Widened, int K, class RayK>
+void fill_packet(int (&valid)[K], RayK& r, std::span<const Ray> rays) {
+  for (std::size_t i = 0; i < std::size_t(K); ++i) {
+    valid[i] = i < rays.size() ? -1 : 0;
+    fill_lane<Mode>(r, i, i < rays.size() ? rays[i] : kUnusedLane);
+  }
+}
+
+/// fill_packet for rtcIntersectK, every lane's hit set to none.
+template <Interval Mode = Interval::Widened, int K, class RayHitK>
+void fill_packet_hit(int (&valid)[K], RayHitK& rh, std::span<const Ray> rays) {
+  fill_packet<Mode>(valid, rh.ray, rays);
+  for (std::size_t i = 0; i < std::size_t(K); ++i) {
+    rh.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.primID[i] = RTC_INVALID_GEOMETRY_ID;
+  }
+}
+
+/// The lanes [0, n) of a packet rtcOccludedK found occluded (Embree sets their tfar to -inf),
+/// as bits from bit `base` on.
+template <class RayK>
+std::uint32_t occluded_bits(const RayK& r, std::size_t n, std::size_t base) {
+  std::uint32_t bits = 0;
+  for (std::size_t i = 0; i < n; ++i)
+    if (r.tfar[i] == -kInfinity) bits |= 1u << (base + i);
+  return bits;
+}
+
 struct MemoryMonitor;
 
 }  // namespace embree_detail
@@ -289,12 +319,7 @@ class EmbreeAccel {
       q.rtc.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
       alignas(64) int valid[K];
       alignas(64) typename Api::RayHitK rh;
-      for (std::size_t i = 0; i < std::size_t(K); ++i) {
-        valid[i] = i < n ? -1 : 0;
-        embree_detail::fill_lane(rh.ray, i, i < n ? rays[base + i] : embree_detail::kUnusedLane);
-        rh.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
-        rh.hit.primID[i] = RTC_INVALID_GEOMETRY_ID;
-      }
+      embree_detail::fill_packet_hit(valid, rh, rays.subspan(base, n));
       Api::intersect(valid, scene_.get(), &q.rtc, &rh);
     }
   }
@@ -314,13 +339,9 @@ class EmbreeAccel {
       q.rtc.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
       alignas(64) int valid[K];
       alignas(64) typename Api::RayK r;
-      for (std::size_t i = 0; i < std::size_t(K); ++i) {
-        valid[i] = i < n ? -1 : 0;
-        embree_detail::fill_lane(r, i, i < n ? rays[i] : embree_detail::kUnusedLane);
-      }
+      embree_detail::fill_packet(valid, r, std::span<const Ray>(rays, n));
       Api::occluded(valid, scene_.get(), &q.rtc, &r);
-      for (std::size_t i = 0; i < n; ++i)
-        if (r.tfar[i] == -kInfinity) occluded |= 1u << (base + i);
+      occluded |= embree_detail::occluded_bits(r, n, base);
     }
     return occluded;
   }

@@ -108,11 +108,7 @@ class EmbreeNative {
       context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
       alignas(64) int valid[K];
       alignas(64) typename Api::RayHitK rh;
-      for (std::size_t i = 0; i < std::size_t(K); ++i) {
-        valid[i] = i < n ? -1 : 0;
-        embree_detail::fill_lane<embree_detail::Interval::Closest>(rh.ray, i, i < n ? rays[base + i] : embree_detail::kUnusedLane);
-        rh.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
-      }
+      embree_detail::fill_packet_hit<embree_detail::Interval::Closest>(valid, rh, rays.subspan(base, n));
       Api::intersect(valid, embree_.scene(), &context, &rh);
       for (std::size_t i = 0; i < n; ++i) {
         if (rh.hit.geomID[i] == RTC_INVALID_GEOMETRY_ID) continue;
@@ -136,13 +132,9 @@ class EmbreeNative {
       context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
       alignas(64) int valid[K];
       alignas(64) typename Api::RayK r;
-      for (std::size_t i = 0; i < std::size_t(K); ++i) {
-        valid[i] = i < n ? -1 : 0;
-        embree_detail::fill_lane<embree_detail::Interval::AnyHit>(r, i, i < n ? rays[base + i] : embree_detail::kUnusedLane);
-      }
+      embree_detail::fill_packet<embree_detail::Interval::AnyHit>(valid, r, rays.subspan(base, n));
       Api::occluded(valid, embree_.scene(), &context, &r);
-      for (std::size_t i = 0; i < n; ++i)
-        if (r.tfar[i] == -kInfinity) occluded |= 1u << (base + i);
+      occluded |= embree_detail::occluded_bits(r, n, base);
     }
     return occluded;
   }
