@@ -27,6 +27,7 @@ const std::vector<StructureInfo>& structures() {
       info.selector = SelectorEntry<E>;
       if constexpr (requires { E::kExact; }) info.exact = E::kExact;
       if constexpr (requires { E::kPeer; }) info.peer = E::kPeer;
+      if constexpr (requires { E::kNativeShapes; }) info.native_shapes = E::kNativeShapes;
       const auto& knobs = E::Params::knobs();
       info.knobs = knobs.names();
       info.knob_table = knobs.describe();
@@ -133,6 +134,16 @@ void attach_triangles(AnyAccel& a, std::span<const TriangleShape> triangles) {
       static_cast<StructureVariant&>(a));
 }
 
+bool takes_triangles(const AnyAccel& a) {
+  return std::visit(
+      [](const auto& s) {
+        // attach_triangles changes the structure, so ask of a non-const one.
+        using S = std::decay_t<decltype(s)>;
+        return requires(S& m, std::span<const TriangleShape> t) { m.attach_triangles(t); };
+      },
+      a.variant());
+}
+
 nlohmann::json params_of(const AnyAccel& a) {
   nlohmann::json j = std::visit(
       [](const auto& s) -> nlohmann::json {
@@ -170,6 +181,7 @@ nlohmann::json registry_json() {
                    {"selector", s.selector},
                    {"exact", s.exact},
                    {"peer", s.peer},
+                   {"native_shapes", s.native_shapes},
                    {"knobs", s.knob_table}});
   return out;
 }

@@ -46,6 +46,10 @@ struct StructureInfo {
   bool exact = true;
   /// A peer we measure against (Embree), not one of ours: benchmarks pair our renders with it.
   bool peer = false;
+  /// The primitives a peer tests with its own routine ("spheres", "triangles"), only in a scene
+  /// of those alone; "" when our routine tests every primitive. Benchmarks time a native peer
+  /// only on the scenes it is native on.
+  std::string native_shapes;
   std::vector<std::string> knobs; ///< Knob names in display order.
   nlohmann::json knob_table;      ///< knobs::KnobTable::describe() of its parameter struct.
   std::string knob_markdown;      ///< knobs::KnobTable::markdown() of its parameter struct.
@@ -86,6 +90,8 @@ void attach_spheres(AnyAccel& a, std::span<const SphereShape> spheres);
 /// Hands a triangle-only scene's triangles (triangles[i] is primitive i) to the built structure
 /// when it tests them itself (embree_triangles); other structures ignore them.
 void attach_triangles(AnyAccel& a, std::span<const TriangleShape> triangles);
+/// True when `a` tests triangles itself once they are attached (attach_triangles does something).
+bool takes_triangles(const AnyAccel& a);
 
 /// The exact parameters a built structure used, every knob spelled out, plus "selected_by"
 /// when a selector chose it.

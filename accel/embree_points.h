@@ -20,6 +20,8 @@ class EmbreePoints : public EmbreeNativePeer<EmbreePointsParams> {
   static constexpr const char* kSummary =
       "Embree 3's own spheres (RTC_GEOMETRY_TYPE_SPHERE_POINT) and its sphere routine: a peer checked "
       "within a tolerance";
+  /// Embree tests the spheres of a sphere-only scene itself (attach_spheres).
+  static constexpr const char* kNativeShapes = "spheres";
 
 #if ACCELBENCH_HAVE_EMBREE
   EmbreePoints() = default;

@@ -24,6 +24,8 @@ class EmbreeTriangles : public EmbreeNativePeer<EmbreeTrianglesParams> {
   static constexpr const char* kSummary =
       "Embree 3's own triangles (RTC_GEOMETRY_TYPE_TRIANGLE) and its triangle routine: a peer checked "
       "within a tolerance";
+  /// Embree tests the triangles of a triangle-only scene itself (attach_triangles).
+  static constexpr const char* kNativeShapes = "triangles";
 
 #if ACCELBENCH_HAVE_EMBREE
   EmbreeTriangles() = default;

@@ -733,12 +733,12 @@ benchmark::internal::Benchmark* timed_ms(benchmark::internal::Benchmark* b) {
   });
 }
 
-/// Whether a structure is worth a row on a scene: each of Embree's native peers only where its
-/// primitives are the scene's (elsewhere it is the user-geometry adapter, `embree`, again).
+/// Whether a structure is worth a row on a scene: a native peer only where its primitives are
+/// the scene's (elsewhere it is the user-geometry adapter, `embree`, again).
 bool applies(const std::string& structure, bool mesh_scene) {
-  if (structure == accel::EmbreePoints::kName) return !mesh_scene;
-  if (structure == accel::EmbreeTriangles::kName) return mesh_scene;
-  return true;
+  const accel::StructureInfo* info = accel::find_structure(structure);
+  if (info == nullptr || info->native_shapes.empty()) return true;
+  return info->native_shapes == (mesh_scene ? "triangles" : "spheres");
 }
 
 /// The mesh scenes this run has (none without ../shared/meshes, with a message).

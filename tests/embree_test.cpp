@@ -357,6 +357,12 @@ TEST(EmbreeTriangles, WithOtherPrimitivesItIsTheUserGeometryAdapter) {
   const accel::AnyAccel a = tracer::build_accel("embree_triangles", nullptr, scene.geometry, boxes);
   EXPECT_FALSE(std::get<accel::EmbreeTriangles>(a).native());
   EXPECT_FALSE(accel::find_structure("embree_triangles")->exact);
+  EXPECT_TRUE(accel::takes_triangles(a));
+  EXPECT_FALSE(accel::takes_triangles(tracer::build_accel("bvh8", nullptr, scene.geometry, boxes)));
+  EXPECT_FALSE(accel::takes_triangles(tracer::build_accel("embree_points", nullptr, scene.geometry, boxes)));
+  EXPECT_EQ(accel::find_structure("embree_triangles")->native_shapes, "triangles");
+  EXPECT_EQ(accel::find_structure("embree_points")->native_shapes, "spheres");
+  EXPECT_EQ(accel::find_structure("bvh8")->native_shapes, "");
   EXPECT_EQ(accel::params_of(a).at("robust"), false) << "Embree's own defaults are the defaults";
   EXPECT_EQ(accel::params_of(a).at("build_quality"), "medium") << "Embree's own defaults are the defaults";
 }

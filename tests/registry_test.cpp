@@ -144,18 +144,19 @@ TEST(Registry, BenchmarksCoverEveryBuiltStructure) {
 #ifdef ACCELBENCH_BENCH_TRACE
   const ProcessRun list = run(std::string(ACCELBENCH_BENCH_TRACE) + " --benchmark_list_tests=true");
   ASSERT_EQ(list.status, 0) << list.output;
-  // Embree's own triangles are measured on the mesh scenes (present with the shared models), its
-  // own spheres on the sphere scenes; every other structure on both.
+  // A peer native on triangles is measured on the mesh scenes (present with the shared models),
+  // one native on spheres on the sphere scenes; every other structure on both.
   const bool meshes = list.output.find("Trace/bunny/") != std::string::npos;
-  if (!meshes) std::printf("no mesh rows (the shared models are absent): embree_triangles is not checked\n");
-  const auto scene_of = [](const std::string& name) { return name == "embree_triangles" ? "bunny" : "spheres8000"; };
+  if (!meshes) std::printf("no mesh rows (the shared models are absent): peers native on triangles are not checked\n");
+  const auto on_meshes = [](const accel::StructureInfo& s) { return s.native_shapes == "triangles"; };
+  const auto scene_of = [&](const accel::StructureInfo& s) { return on_meshes(s) ? "bunny" : "spheres8000"; };
   for (const accel::StructureInfo& s : accel::structures()) {
-    if (!s.built || (!meshes && s.name == "embree_triangles")) continue;
-    const std::string scene = scene_of(s.name);
+    if (!s.built || (!meshes && on_meshes(s))) continue;
+    const std::string scene = scene_of(s);
     for (const char* set : {"coherent", "packets", "incoherent", "shadow"})
       EXPECT_NE(list.output.find("Trace/" + scene + "/" + std::string(set) + "/" + s.name + "\n"), std::string::npos)
           << s.name;
-    if (meshes && s.name != "embree_points") {
+    if (meshes && s.native_shapes != "spheres") {
       EXPECT_NE(list.output.find("Trace/bunny/coherent/" + s.name + "\n"), std::string::npos) << s.name;
     }
     if (s.name != "naive") {
@@ -165,8 +166,8 @@ TEST(Registry, BenchmarksCoverEveryBuiltStructure) {
     // where Embree is built.
     if (ACCELBENCH_HAVE_EMBREE && s.name != "naive" && !s.peer) {
       for (const accel::StructureInfo& peer : accel::structures())
-        if (peer.peer && peer.built && (meshes || peer.name != "embree_triangles")) {
-          EXPECT_NE(list.output.find("RenderPair/" + std::string(scene_of(peer.name)) + "/" + s.name + "/vs_" +
+        if (peer.peer && peer.built && (meshes || !on_meshes(peer))) {
+          EXPECT_NE(list.output.find("RenderPair/" + std::string(scene_of(peer)) + "/" + s.name + "/vs_" +
                                      peer.name + "/"),
                     std::string::npos)
               << s.name << " vs " << peer.name;

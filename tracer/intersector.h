@@ -218,7 +218,8 @@ class Intersector {
 
 /// Gives a structure built over geometry.primitive_bounds() what it needs of the primitives
 /// themselves: the spheres of a sphere-only scene, for structures with SIMD sphere leaves and
-/// embree_points; the triangles of a triangle-only scene, for embree_triangles.
+/// embree_points; the triangles of a triangle-only scene, for a structure that tests them itself
+/// (embree_triangles). The triangles are copied only for such a structure.
 inline void attach_geometry(accel::AnyAccel& a, const Geometry& geometry) {
   if (geometry.bounded_count() == geometry.spheres.size() && !geometry.spheres.empty()) {
     std::vector<accel::SphereShape> shapes;
@@ -226,7 +227,7 @@ inline void attach_geometry(accel::AnyAccel& a, const Geometry& geometry) {
     for (const Sphere& s : geometry.spheres) shapes.push_back({s.center, s.radius});
     accel::attach_spheres(a, shapes);
   } else if (geometry.bounded_count() == geometry.triangles.size() && !geometry.triangles.empty() &&
-             accel::name_of(a) == accel::EmbreeTriangles::kName) {
+             accel::takes_triangles(a)) {
     std::vector<accel::TriangleShape> shapes;
     shapes.reserve(geometry.triangles.size());
     for (const Triangle& t : geometry.triangles) shapes.push_back({t.p0, t.p1, t.p2});
