@@ -20,7 +20,7 @@
 namespace accel {
 
 /// A packet leaf function that can take a t computed elsewhere (SIMD sphere leaves): the
-/// packet form of AcceptingLeafFn (sphere_soa.h).
+/// packet form of AcceptingLeafFn (simd_leaves.h).
 template <class LeafFn>
 concept AcceptingPacketLeafFn = requires(LeafFn& f, std::size_t lane, std::uint32_t id, float t, Ray& ray) {
   { f.accept(lane, id, t, ray) } -> std::convertible_to<bool>;

@@ -9,6 +9,7 @@
 #include "geometry.h"
 #include "leaf_loop.h"
 #include "ray_packet.h"
+#include "simd_leaves.h"
 #include "simd.h"
 #include "sphere_hit.h"
 #include "stats.h"
@@ -24,15 +25,6 @@
 #include <vector>
 
 namespace accel {
-
-/// A leaf function that can take a t computed elsewhere: accept(id, t, ray) must do exactly
-/// what leaf_fn(id, ray) does when leaf_fn's own test of `id` gives t. The tracer's leaf
-/// functions provide it; with it a structure holding SphereSoA tests spheres in SIMD. A
-/// structure skips accept for a t above ray.tmax, which the contract never accepts.
-template <class LeafFn>
-concept AcceptingLeafFn = requires(LeafFn& f, std::uint32_t id, float t, Ray& ray) {
-  { f.accept(id, t, ray) } -> std::convertible_to<bool>;
-};
 
 class SphereSoA {
  public:
@@ -76,21 +68,7 @@ class SphereSoA {
       const Batch t = intersect_spheres(Batch::load_unaligned(cx_.data() + at), Batch::load_unaligned(cy_.data() + at),
                                         Batch::load_unaligned(cz_.data() + at), Batch::load_unaligned(r_.data() + at),
                                         ray);
-      const std::uint32_t lanes = std::min(kLanes, count - j);
-      // Misses (+inf) never reach the leaf function, even while tmax is +inf.
-      const float limit = std::min(ray.tmax, std::numeric_limits<float>::max());
-      std::uint32_t bits = simd::mask_bits<Batch>(t <= Batch(limit)) & ((1u << lanes) - 1u);
-      if (!bits) continue;
-      alignas(64) float ts[kLanes];
-      t.store_aligned(ts);
-      do {
-        const int i = simd::first_lane(bits);
-        bits &= bits - 1u;
-        if (leaf_fn.accept(ids[at + std::uint32_t(i)], ts[i], ray)) {
-          if constexpr (AnyHit) return true;
-          hit = true;
-        }
-      } while (bits);
+      if (accept_lanes<AnyHit>(t, std::min(kLanes, count - j), ids, at, ray, leaf_fn, hit)) return true;
     }
     return false;
   }
@@ -123,20 +101,10 @@ class SphereSoA {
   std::vector<float, CacheLineAllocator<float>> cx_, cy_, cz_, r_;
 };
 
-/// A structure's attach_spheres: checks that `spheres` holds one sphere per primitive the
-/// structure was built over, fills `soa` for the structure's id array `ids` (duplicated
-/// references included), and adds the time it takes and the bytes it holds to `stats`.
+/// A structure's attach_spheres (attach_leaf_shapes, simd_leaves.h).
 inline void attach_sphere_leaves(const char* structure, std::span<const std::uint32_t> ids,
                                  std::span<const SphereShape> spheres, SphereSoA& soa, BuildStats& stats) {
-  if (spheres.size() != stats.primitives)
-    throw std::invalid_argument(std::string(structure) + ": " + std::to_string(spheres.size()) +
-                                " spheres attached to a structure over " + std::to_string(stats.primitives) +
-                                " primitives");
-  const auto start = std::chrono::steady_clock::now();
-  stats.memory_bytes -= soa.memory_bytes();
-  soa.build(ids, spheres);
-  stats.memory_bytes += soa.memory_bytes();
-  stats.build_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  attach_leaf_shapes(structure, "spheres", ids, spheres, soa, stats);
 }
 
 /// The leaf loop of a structure that may hold SphereSoA: ids[begin, begin + count) tested as

@@ -471,7 +471,7 @@ TEST_P(Oracle, EveryStructureAndKnobMatchesNaive) {
       }
       ++configs;
       // Without the scene's primitives first (every leaf calls the leaf function), then with
-      // them (structures with SIMD sphere leaves test the spheres themselves).
+      // them (structures with SIMD sphere or triangle leaves test the primitives themselves).
       if (configs % 3 == 1) {
         EXPECT_EQ(compare(label + " (boxes only)", scene.geometry, a, ref, false), 0) << label;
       }
@@ -479,6 +479,9 @@ TEST_P(Oracle, EveryStructureAndKnobMatchesNaive) {
       if (const auto* wide = std::get_if<accel::Bvh8>(&a.variant())) {
         EXPECT_EQ(wide->has_sphere_leaves(), scene.geometry.kind_set() == tracer::KindSet::SpheresOnly && !scene.geometry.spheres.empty())
             << label << ": the spheres of a sphere-only scene test in SIMD";
+        EXPECT_EQ(wide->has_triangle_leaves(),
+                  scene.geometry.bounded_count() == scene.geometry.triangles.size() && !scene.geometry.triangles.empty())
+            << label << ": the triangles of a triangle-only scene test in SIMD";
       }
       if (!accel::find_structure(name)->exact) {
         // Its own primitive routine answers: the same primitive and any-hit answer, and t within

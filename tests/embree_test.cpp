@@ -358,7 +358,8 @@ TEST(EmbreeTriangles, WithOtherPrimitivesItIsTheUserGeometryAdapter) {
   EXPECT_FALSE(std::get<accel::EmbreeTriangles>(a).native());
   EXPECT_FALSE(accel::find_structure("embree_triangles")->exact);
   EXPECT_TRUE(accel::takes_triangles(a));
-  EXPECT_FALSE(accel::takes_triangles(tracer::build_accel("bvh8", nullptr, scene.geometry, boxes)));
+  EXPECT_TRUE(accel::takes_triangles(tracer::build_accel("bvh8", nullptr, scene.geometry, boxes)));  // SIMD leaves
+  EXPECT_FALSE(accel::takes_triangles(tracer::build_accel("bvh", nullptr, scene.geometry, boxes)));
   EXPECT_FALSE(accel::takes_triangles(tracer::build_accel("embree_points", nullptr, scene.geometry, boxes)));
   EXPECT_EQ(accel::find_structure("embree_triangles")->native_shapes, "triangles");
   EXPECT_EQ(accel::find_structure("embree_points")->native_shapes, "spheres");

@@ -9,10 +9,12 @@
 #include "tracer/triangle_box.h"
 
 #include "accel/accel.h"
+#include "accel/triangle_hit.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
 #include <cstdio>
 #include <map>
 #include <random>
@@ -105,6 +107,64 @@ TEST(Triangle, DegenerateAndParallelAreNeverHit) {
   }
 }
 
+// The structures' SIMD triangle leaves run the scalar routines lane by lane
+// (accel/triangle_hit.h): each lane must give the scalar t to the bit, on random triangles at
+// every scale, on rays aimed exactly at vertices and edges (edge functions of exactly 0, which
+// both take again in double), on degenerate triangles and on rays along an axis.
+TEST(Triangle, SimdLanesEqualTheScalarRoutinesBitForBit) {
+  using Batch = accel::simd::FloatLeaf;
+  constexpr std::size_t n = Batch::size;
+  std::mt19937 rng(23);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f), s01(0.0f, 1.0f);
+  std::uniform_int_distribution<int> kind(0, 5);
+  std::uint64_t lanes = 0, hits[2] = {0, 0};
+  for (const float scale : {1e-5f, 1.0f, 3e4f}) {
+    for (int batch = 0; batch < 20000; ++batch) {
+      alignas(64) float coords[3][3][n];
+      Vec3 p[n][3];
+      for (std::size_t i = 0; i < n; ++i) {
+        for (int v = 0; v < 3; ++v) p[i][v] = Vec3(u(rng), u(rng), u(rng)) * scale;
+        if (i == 3) p[i][2] = p[i][1];                           // a repeated vertex
+        if (i == 5) p[i][2] = p[i][0] + 2.0f * (p[i][1] - p[i][0]);  // nearly collinear
+        if (i > 0 && i % 2 == 0) p[i][0] = p[i - 1][1], p[i][1] = p[i - 1][0];  // shares an edge
+        for (int v = 0; v < 3; ++v)
+          for (int a = 0; a < 3; ++a) coords[v][a][i] = p[i][v][a];
+      }
+      accel::TriangleLanes<Batch> tri;
+      for (int v = 0; v < 3; ++v)
+        for (int a = 0; a < 3; ++a) tri.p[v][a] = Batch::load_aligned(coords[v][a]);
+      Ray r;
+      r.org = Vec3(u(rng), u(rng), u(rng)) * (3.0f * scale);
+      const Vec3* target = p[std::size_t(batch) % n];
+      switch (kind(rng)) {
+        case 0: r.dir = target[0] - r.org; break;                                          // at a vertex
+        case 1: r.dir = target[0] + s01(rng) * (target[1] - target[0]) - r.org; break;    // at an edge
+        case 2: r.dir = Vec3(0.0f, 0.0f, u(rng) < 0.0f ? -1.0f : 1.0f); break;           // along an axis
+        case 3: r.dir = Vec3(u(rng), 0.0f, u(rng)); break;                                // a zero component
+        default: r.dir = Vec3(u(rng), u(rng), u(rng)) * scale; break;
+      }
+      r.tmin = (batch % 7 == 0) ? 0.5f : 0.0f;
+      alignas(64) float got[2][n];
+      accel::watertight_lanes(tri, r, accel::WatertightRay(r)).store_aligned(got[0]);
+      accel::moller_lanes(tri, r).store_aligned(got[1]);
+      for (std::size_t i = 0; i < n; ++i) {
+        const float want[2] = {tracer::watertight_distance<float>(p[i][0], p[i][1], p[i][2], r),
+                               tracer::moller_distance<float>(p[i][0], p[i][1], p[i][2], r)};
+        for (int k = 0; k < 2; ++k) {
+          ASSERT_EQ(std::bit_cast<std::uint32_t>(got[k][i]), std::bit_cast<std::uint32_t>(want[k]))
+              << (k == 0 ? "watertight" : "moller") << " lane " << i << " of batch " << batch << " at scale "
+              << scale << ": " << got[k][i] << " for " << want[k];
+          hits[k] += want[k] < kInf;
+        }
+        ++lanes;
+      }
+    }
+  }
+  // Enough hits that the comparison is not of misses only.
+  EXPECT_GT(hits[0], lanes / 40);
+  EXPECT_GT(hits[1], lanes / 40);
+}
+
 /// Rays from points inside a closed mesh aimed exactly at its shared vertices and at points on
 /// its shared edges; counts those that hit nothing (escaped through the surface).
 std::uint64_t escapes(const tracer::MeshData& mesh, float inside, TriangleTest test, std::uint64_t rays,
@@ -113,7 +173,8 @@ std::uint64_t escapes(const tracer::MeshData& mesh, float inside, TriangleTest t
   for (const auto& t : mesh.triangles)
     g.triangles.push_back({mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]], 0});
   g.finalize();
-  const accel::AnyAccel bvh = accel::make_accel("bvh8", nullptr, g.primitive_bounds());
+  accel::AnyAccel bvh = accel::make_accel("bvh8", nullptr, g.primitive_bounds());
+  tracer::attach_geometry(bvh, g);  // as a render builds it: SIMD triangle leaves
   std::mt19937 rng(seed);
   std::uniform_real_distribution<float> u(-inside, inside), s(0.0f, 1.0f);
   std::uniform_int_distribution<std::size_t> pick(0, mesh.triangles.size() - 1);

@@ -132,8 +132,10 @@ class Intersector {
 
  private:
   // The leaf functions of the traversal contract. accept() takes a t the structure computed
-  // itself: with the same routine (SIMD sphere leaves, accel/sphere_soa.h, which hold spheres
-  // only in sphere-only scenes), or with its own (Embree's primitives, a peer within a tolerance).
+  // itself: with the same routine (SIMD sphere and triangle leaves, accel/sphere_soa.h and
+  // accel/triangle_soa.h, which hold spheres only in sphere-only scenes and triangles only in
+  // triangle-only ones, and run the routine triangle_test() names), or with its own (Embree's
+  // primitives, a peer within a tolerance).
 
   /// Closest hit: keeps the nearest, ties to the lower id.
   struct ClosestLeaf {
@@ -154,6 +156,7 @@ class Intersector {
     {
       return keep(id, t, r);
     }
+    TriangleTest triangle_test() const { return tri; }
   };
 
   /// ClosestLeaf for the ray of each lane of a packet, writing hits[lane].
@@ -166,6 +169,7 @@ class Intersector {
     {
       return ClosestLeaf{geo, tri, hits + lane}.keep(id, t, r);
     }
+    TriangleTest triangle_test() const { return tri; }
   };
 
   /// The nearest unbounded plane in the ray's interval, which shortens ray.tmax to it.
@@ -197,6 +201,7 @@ class Intersector {
     {
       return t < r.tmax;
     }
+    TriangleTest triangle_test() const { return tri; }
   };
 
   /// AnyLeaf for the ray of any lane of a packet.
@@ -208,6 +213,7 @@ class Intersector {
     {
       return t < r.tmax;
     }
+    TriangleTest triangle_test() const { return tri; }
   };
 
   const Geometry* geo_;
@@ -219,7 +225,8 @@ class Intersector {
 /// Gives a structure built over geometry.primitive_bounds() what it needs of the primitives
 /// themselves: the spheres of a sphere-only scene, for structures with SIMD sphere leaves and
 /// embree_points; the triangles of a triangle-only scene, for a structure that tests them itself
-/// (embree_triangles). The triangles are copied only for such a structure.
+/// (embree_triangles, and bvh4 and bvh8 with their SIMD triangle leaves). The triangles are copied
+/// only for such a structure.
 inline void attach_geometry(accel::AnyAccel& a, const Geometry& geometry) {
   if (geometry.bounded_count() == geometry.spheres.size() && !geometry.spheres.empty()) {
     std::vector<accel::SphereShape> shapes;

@@ -6,17 +6,16 @@
 // vertex of a closed mesh hits one of them. Moller-Trumbore is faster and decides each triangle
 // alone, so such rays can slip between two neighbours. Both give the same hits away from edges.
 
+#include "accel/triangle_shape.h"
 #include "knobs/knob_table.h"
 
 #include <cstdint>
 
 namespace tracer {
 
-/// The ray/triangle routine of a render.
-enum class TriangleTest : std::uint8_t {
-  Watertight,  ///< Woop-Benthin-Wald: edge functions in a ray-aligned shear frame; never leaks.
-  Moller,      ///< Moller-Trumbore: faster; can leak through shared edges and vertices.
-};
+/// The ray/triangle routine of a render; defined beside the structures' triangles, whose SIMD
+/// leaves run the same routine (accel/triangle_hit.h).
+using accel::TriangleTest;
 
 /// The name of the knob that chooses it (every integrator has one).
 inline constexpr const char* kTriangleKnob = "triangle";

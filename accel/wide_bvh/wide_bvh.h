@@ -4,7 +4,8 @@
 // back by entry distance, the any-hit traversal (shadow rays) in node order with no sorting and
 // leaves first. Built directly by binned SAH (wide_bvh_builder.cpp): a node takes its range's
 // SAH split, then keeps splitting its largest child until it has W. Leaves may hold their
-// spheres structure-of-arrays (sphere_soa.h), tested several at a time.
+// spheres (sphere_soa.h) or triangles (triangle_soa.h) structure-of-arrays, tested several at a
+// time by the leaf function's own routine.
 
 #include "accel/build_limits.h"
 #include "accel/bvh.h"
@@ -17,6 +18,7 @@
 #include "accel/ray_setup.h"
 #include "accel/simd.h"
 #include "accel/sphere_soa.h"
+#include "accel/triangle_soa.h"
 #include "accel/stats.h"
 
 #include <algorithm>
@@ -41,15 +43,15 @@ template <>
 struct WideBvhWidth<4> {
   static constexpr const char* kName = "bvh4";
   static constexpr const char* kSummary =
-      "4-wide BVH, binned SAH, SoA nodes tested in one SIMD step, SIMD sphere leaves";
-  static constexpr int kLeafSize = 4;  ///< Default max_leaf_size: one SIMD step of spheres.
+      "4-wide BVH, binned SAH, SoA nodes tested in one SIMD step, SIMD sphere and triangle leaves";
+  static constexpr int kLeafSize = 4;  ///< Default max_leaf_size: one SIMD step of spheres or triangles.
 };
 template <>
 struct WideBvhWidth<8> {
   static constexpr const char* kName = "bvh8";
   static constexpr const char* kSummary =
-      "8-wide BVH, binned SAH, SoA nodes tested in one SIMD step, SIMD sphere leaves";
-  static constexpr int kLeafSize = 8;  ///< Default max_leaf_size: one SIMD step of spheres.
+      "8-wide BVH, binned SAH, SoA nodes tested in one SIMD step, SIMD sphere and triangle leaves";
+  static constexpr int kLeafSize = 8;  ///< Default max_leaf_size: one SIMD step of spheres or triangles.
 };
 
 /// Knobs of a wide BVH (the same for every width; the table is owned by its width's name).
@@ -104,6 +106,16 @@ class WideBvh {
     stats_.memory_bytes -= leaf_boxes_.memory_bytes();
     leaf_boxes_.clear();  // sphere leaves test the spheres themselves
     attach_sphere_leaves(kName, prim_ids_, spheres, spheres_, stats_);
+  }
+
+  /// Stores the triangles of a triangle-only scene (triangles[i] is primitive i) beside the
+  /// leaves, so that leaves test them in SIMD, by the leaf function's routine, for leaf functions
+  /// that accept a precomputed t and name their routine (TriangleLeafFn). The time it takes is
+  /// added to stats().build_ms.
+  void attach_triangles(std::span<const TriangleShape> triangles) {
+    stats_.memory_bytes -= leaf_boxes_.memory_bytes();
+    leaf_boxes_.clear();  // triangle leaves test the triangles themselves
+    attach_leaf_shapes(kName, "triangles", prim_ids_, triangles, triangles_, stats_);
   }
 
   /// Closest hit: children front to back by entry distance; leaf_fn may shorten ray.tmax, and a
@@ -205,6 +217,8 @@ class WideBvh {
   std::span<const std::uint32_t> prim_ids() const { return prim_ids_; }
   /// True when the leaves hold their spheres structure-of-arrays.
   bool has_sphere_leaves() const { return !spheres_.empty(); }
+  /// True when the leaves hold their triangles structure-of-arrays.
+  bool has_triangle_leaves() const { return !triangles_.empty(); }
 
  private:
   /// The batch the box test runs on: W lanes where the target has them, else 4 at a time.
@@ -291,6 +305,11 @@ class WideBvh {
       requires AcceptingPacketLeafFn<LeafFn>
     {
       return leaf_fn->accept(lane, id, t, ray);
+    }
+    TriangleTest triangle_test() const
+      requires requires(const LeafFn& f) { f.triangle_test(); }
+    {
+      return leaf_fn->triangle_test();
     }
   };
 
@@ -429,6 +448,20 @@ class WideBvh {
         if (!bvh.spheres_.empty()) {
           bvh.spheres_.template test_packet<Count>(bvh.prim_ids_.data(), first, count, packet.valid, packet, rays,
                                                    base, leaf_fn, counters);
+          return;
+        }
+      }
+      if constexpr (TriangleLeafFn<LaneLeaf<LeafFn>>) {
+        if (!bvh.triangles_.empty()) {
+          // Triangle leaves: each ray of the packet against the leaf's triangles, several at a
+          // time, as its own walk would test them.
+          for (std::uint32_t lanes = packet.valid; lanes; lanes &= lanes - 1u) {
+            const std::size_t i = std::size_t(std::countr_zero(lanes));
+            LaneLeaf<LeafFn> lane{&leaf_fn, base + i};
+            bool hit = false;
+            bvh.triangles_.template test<Count, false>(bvh.prim_ids_.data(), first, count, rays[i], lane, counters,
+                                                       hit);
+          }
           return;
         }
       }
@@ -640,6 +673,21 @@ class WideBvh {
             stack[sp++] = {n.child[c], in};
             continue;
           }
+          if constexpr (TriangleLeafFn<LaneLeaf<LeafFn>>) {
+            if (!triangles_.empty()) {
+              for (std::uint32_t lanes = in & live; lanes; lanes &= lanes - 1u) {
+                const std::size_t i = std::size_t(std::countr_zero(lanes));
+                LaneLeaf<LeafFn> lane{&leaf_fn, lane_base + i};
+                bool hit = false;
+                if (triangles_.template test<Count, true>(prim_ids_.data(), n.child[c], n.count[c], group[i], lane,
+                                                          counters, hit))
+                  live &= ~(1u << i);
+              }
+              if (!live) return packet.valid;
+              at.lanes &= live;
+              continue;
+            }
+          }
           for (std::uint32_t j = n.child[c]; j < n.child[c] + n.count[c]; ++j) {
             std::uint32_t lanes = in & live;
             if (!leaf_boxes_.empty()) lanes &= leaf_boxes_.enter_packet(j, packet, t_hi);
@@ -661,11 +709,11 @@ class WideBvh {
   void build(std::span<const Aabb> boxes, std::uint64_t budget_bytes);
   std::uint64_t memory_bytes() const {
     return nodes_.size() * sizeof(Node) + prim_ids_.size() * sizeof(std::uint32_t) + spheres_.memory_bytes() +
-           leaf_boxes_.memory_bytes();
+           triangles_.memory_bytes() + leaf_boxes_.memory_bytes();
   }
 
-  /// The leaf loop of one ray: SIMD sphere leaves where the spheres are attached and leaf_fn
-  /// takes a t; else the primitives' own boxes first, several at a time, and leaf_fn for the
+  /// The leaf loop of one ray: SIMD sphere or triangle leaves where those are attached and
+  /// leaf_fn takes a t (and, for triangles, names its routine); else the primitives' own boxes first, several at a time, and leaf_fn for the
   /// primitives whose box the ray may enter: for any hit in leaf order, for the closest hit
   /// nearest box first, stopping at the first box that starts beyond the hit found (as the
   /// traversal skips a child entered beyond it). Which primitive wins does not depend on the
@@ -673,6 +721,10 @@ class WideBvh {
   template <bool Count, bool AnyHit, class LeafFn>
   bool leaf_loop(Ray& ray, const NodeRay& r, std::uint32_t first, std::uint32_t count, LeafFn& leaf_fn,
                  TraversalCounters* counters, bool& hit) const {
+    if constexpr (TriangleLeafFn<LeafFn>) {
+      if (!triangles_.empty())
+        return triangles_.template test<Count, AnyHit>(prim_ids_.data(), first, count, ray, leaf_fn, counters, hit);
+    }
     const bool sphere_leaves = AcceptingLeafFn<LeafFn> && !spheres_.empty();
     if (sphere_leaves || leaf_boxes_.empty())
       return test_leaf<Count, AnyHit>(prim_ids_.data(), spheres_, first, count, ray, leaf_fn, counters, hit);
@@ -715,7 +767,8 @@ class WideBvh {
   std::vector<Node, CacheLineAllocator<Node>> nodes_;
   std::vector<std::uint32_t> prim_ids_;
   SphereSoA spheres_;
-  LeafBoxes leaf_boxes_;  ///< The primitives' boxes in leaf order; cleared when spheres are attached.
+  TriangleSoA triangles_;
+  LeafBoxes leaf_boxes_;  ///< The primitives' boxes in leaf order; cleared when spheres or triangles are attached.
   BuildStats stats_;
 };
 
