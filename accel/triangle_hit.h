@@ -26,6 +26,7 @@ struct WatertightRay {
   float sx = 0.0f, sy = 0.0f, sz = 0.0f;
   bool valid = false;  ///< False when dir[kz] is 0 or not finite: the ray hits nothing.
 
+  WatertightRay() = default;
   explicit WatertightRay(const Ray& ray) {
     const Vec3 ad = glm::abs(ray.dir);
     kz = ad.x > ad.y ? (ad.x > ad.z ? 0 : 2) : (ad.y > ad.z ? 1 : 2);

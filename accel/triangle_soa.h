@@ -46,11 +46,12 @@ class TriangleSoA {
   std::uint64_t memory_bytes() const { return 9 * std::uint64_t(coords_[0].capacity()) * sizeof(float); }
 
   /// Tests ids[begin, begin + count) as triangles by leaf_fn.triangle_test(), kLanes at a time,
-  /// then calls leaf_fn.accept(id, t, ray) in id order for each hit within ray.tmax. Returns
-  /// true when AnyHit and one was accepted; sets `hit` when one was accepted.
+  /// then calls leaf_fn.accept(id, t, ray) in id order for each hit within ray.tmax. `w` is
+  /// WatertightRay(ray), computed once per ray by the caller. Returns true when AnyHit and one
+  /// was accepted; sets `hit` when one was accepted.
   template <bool Count, bool AnyHit, class LeafFn>
-  bool test(const std::uint32_t* ids, std::uint32_t begin, std::uint32_t count, Ray& ray, LeafFn& leaf_fn,
-            TraversalCounters* counters, bool& hit) const {
+  bool test(const std::uint32_t* ids, std::uint32_t begin, std::uint32_t count, Ray& ray, const WatertightRay& w,
+            LeafFn& leaf_fn, TraversalCounters* counters, bool& hit) const {
     if constexpr (Count) counters->prims_tested += count;
     if (leaf_fn.triangle_test() == TriangleTest::Moller) {
       for (std::uint32_t j = 0; j < count; j += kLanes) {
@@ -59,7 +60,6 @@ class TriangleSoA {
       }
       return false;
     }
-    const WatertightRay w(ray);
     for (std::uint32_t j = 0; j < count; j += kLanes) {
       const Batch t = watertight_lanes(load(begin + j), ray, w);
       if (accept_lanes<AnyHit>(t, std::min(kLanes, count - j), ids, begin + j, ray, leaf_fn, hit)) return true;

@@ -267,6 +267,7 @@ class WideBvh {
     std::uint32_t child;  ///< Node index, or first primitive of a leaf.
     std::uint32_t count;  ///< Leaf primitives; 0 for an inner node.
     float t;              ///< Entry distance, checked against the (shorter) t_hi when popped.
+    std::uint32_t box;    ///< Leaf: where its box is, W * (parent node index) + slot.
   };
 
   /// One ray's closest-hit query: the single-ray box test, the leaf loop, its tmax.
@@ -277,14 +278,15 @@ class WideBvh {
     NodeRay r;
     LeafFn& leaf_fn;
     TraversalCounters* counters;
+    WatertightRay tri_ray = bvh.triangles_.empty() ? WatertightRay() : WatertightRay(ray);
     bool hit = false;
 
     std::uint64_t rays() const { return 1; }
     float t_lo() const { return widen_down(ray.tmin); }
     float t_hi() const { return widen_up(ray.tmax); }
     std::uint32_t enter(const Node& n, float lo, float hi, float* tn) const { return WideBvh::enter(n, r, lo, hi, tn); }
-    void leaf(std::uint32_t first, std::uint32_t count) {
-      bvh.template leaf_loop<Count, false>(ray, r, first, count, leaf_fn, counters, hit);
+    void leaf(std::uint32_t first, std::uint32_t count, std::uint32_t /*box*/) {
+      bvh.template leaf_loop<Count, false>(ray, r, tri_ray, first, count, leaf_fn, counters, hit);
     }
   };
 
@@ -433,17 +435,23 @@ class WideBvh {
       return frustum.one_origin ? enter_frustum<true>(n, frustum, lo, hi, tn)
                                 : enter_frustum<false>(n, frustum, lo, hi, tn);
     }
-    void leaf(std::uint32_t first, std::uint32_t count) {
+    void leaf(std::uint32_t first, std::uint32_t count, std::uint32_t box) {
       for (std::size_t g = 0; g < packets.count; ++g) {
         const std::size_t at = g * kPacket;
         leaf_of(packets.packet[g], group.subspan(at, std::min(kPacket, group.size() - at)), lane_base + at, first,
-                count);
+                count, box);
       }
     }
 
     /// The leaf [first, first + count) against the rays of one packet.
     void leaf_of(const RayPacket<PacketBatch>& packet, std::span<Ray> rays, std::size_t base, std::uint32_t first,
-                 std::uint32_t count) {
+                 std::uint32_t count, std::uint32_t box) {
+      // The rays' current t_hi, lane by lane (lanes past the rays repeat the first).
+      const auto hi_now = [&] {
+        alignas(64) float hi[kPacket];
+        for (std::size_t i = 0; i < kPacket; ++i) hi[i] = widen_up(rays[i < rays.size() ? i : 0].tmax);
+        return PacketBatch::load_aligned(hi);
+      };
       if constexpr (AcceptingPacketLeafFn<LeafFn>) {
         if (!bvh.spheres_.empty()) {
           bvh.spheres_.template test_packet<Count>(bvh.prim_ids_.data(), first, count, packet.valid, packet, rays,
@@ -453,14 +461,17 @@ class WideBvh {
       }
       if constexpr (TriangleLeafFn<LaneLeaf<LeafFn>>) {
         if (!bvh.triangles_.empty()) {
-          // Triangle leaves: each ray of the packet against the leaf's triangles, several at a
-          // time, as its own walk would test them.
-          for (std::uint32_t lanes = packet.valid; lanes; lanes &= lanes - 1u) {
+          // Triangle leaves: each ray of the packet that enters the leaf's box (the frustum only
+          // says that some ray may) against the leaf's triangles, several at a time, as its own
+          // walk would test them.
+          const std::uint32_t in =
+              enter_rays(bvh.nodes_[box / std::uint32_t(W)], int(box % std::uint32_t(W)), packet, hi_now());
+          for (std::uint32_t lanes = in; lanes; lanes &= lanes - 1u) {
             const std::size_t i = std::size_t(std::countr_zero(lanes));
             LaneLeaf<LeafFn> lane{&leaf_fn, base + i};
             bool hit = false;
-            bvh.triangles_.template test<Count, false>(bvh.prim_ids_.data(), first, count, rays[i], lane, counters,
-                                                       hit);
+            bvh.triangles_.template test<Count, false>(bvh.prim_ids_.data(), first, count, rays[i],
+                                                       WatertightRay(rays[i]), lane, counters, hit);
           }
           return;
         }
@@ -469,11 +480,6 @@ class WideBvh {
       // for the rays that may enter it. Leaves of up to kOrdered primitives take them in the
       // order of the least entry distance into their boxes, and test each box against the rays'
       // hits so far, so that a near hit spares the farther primitives behind it.
-      const auto hi_now = [&] {
-        alignas(64) float hi[kPacket];
-        for (std::size_t i = 0; i < kPacket; ++i) hi[i] = widen_up(rays[i < rays.size() ? i : 0].tmax);
-        return PacketBatch::load_aligned(hi);
-      };
       const auto test = [&](std::uint32_t j, std::uint32_t lanes) {
         bool kept = false;
         for (; lanes; lanes &= lanes - 1u) {
@@ -535,17 +541,18 @@ class WideBvh {
       if (bits) {
         // Push every entered child but the nearest, farthest first; then take the nearest. A
         // leaf taken is tested at once.
-        Entry near{0, 0, kInfinity};
+        Entry near{0, 0, kInfinity, 0};
+        const std::uint32_t box = node * std::uint32_t(W);
         const int first = std::countr_zero(bits);
         const std::uint32_t rest = bits & (bits - 1u);
         if (rest == 0) {
-          near = {n.child[first], n.count[first], tn[first]};
+          near = {n.child[first], n.count[first], tn[first], box + std::uint32_t(first)};
         } else if (std::has_single_bit(rest)) {
           // Two children, the common case: push the farther and take the nearer (the later
           // one at a tie, as the sort below would).
           const int second = std::countr_zero(rest);
-          const Entry a{n.child[first], n.count[first], tn[first]};
-          const Entry b{n.child[second], n.count[second], tn[second]};
+          const Entry a{n.child[first], n.count[first], tn[first], box + std::uint32_t(first)};
+          const Entry b{n.child[second], n.count[second], tn[second], box + std::uint32_t(second)};
           const bool b_nearer = b.t <= a.t;
           stack[sp++] = b_nearer ? a : b;
           near = b_nearer ? b : a;
@@ -555,7 +562,7 @@ class WideBvh {
           do {
             const int i = std::countr_zero(bits);
             bits &= bits - 1u;
-            Entry e{n.child[i], n.count[i], tn[i]};
+            Entry e{n.child[i], n.count[i], tn[i], box + std::uint32_t(i)};
             int j = k++;  // insertion sort, nearest last
             for (; j > 0 && hits[j - 1].t < e.t; --j) hits[j] = hits[j - 1];
             hits[j] = e;
@@ -567,7 +574,7 @@ class WideBvh {
           node = near.child;
           continue;
         }
-        q.leaf(near.child, near.count);
+        q.leaf(near.child, near.count, near.box);
         t_hi = q.t_hi();
       }
       // Pop the nearest pending child that still starts before the current hit; leaves are
@@ -580,7 +587,7 @@ class WideBvh {
           node = e.child;
           break;
         }
-        q.leaf(e.child, e.count);
+        q.leaf(e.child, e.count, e.box);
         t_hi = q.t_hi();
       }
     }
@@ -590,6 +597,7 @@ class WideBvh {
   bool any_hit(Ray& ray, const NodeRay& r, LeafFn& leaf_fn, TraversalCounters* counters) const {
     const float t_lo = widen_down(ray.tmin);
     const float t_hi = widen_up(ray.tmax);
+    const WatertightRay tri_ray = triangles_.empty() ? WatertightRay() : WatertightRay(ray);
     std::uint32_t stack[kStackSize];
     int sp = 0;
     bool hit = false;
@@ -607,7 +615,7 @@ class WideBvh {
         bits &= bits - 1u;
         if (n.count[i] == 0) {
           stack[sp++] = n.child[i];
-        } else if (leaf_loop<Count, true>(ray, r, n.child[i], n.count[i], leaf_fn, counters, hit)) {
+        } else if (leaf_loop<Count, true>(ray, r, tri_ray, n.child[i], n.count[i], leaf_fn, counters, hit)) {
           return true;
         }
       }
@@ -679,8 +687,8 @@ class WideBvh {
                 const std::size_t i = std::size_t(std::countr_zero(lanes));
                 LaneLeaf<LeafFn> lane{&leaf_fn, lane_base + i};
                 bool hit = false;
-                if (triangles_.template test<Count, true>(prim_ids_.data(), n.child[c], n.count[c], group[i], lane,
-                                                          counters, hit))
+                if (triangles_.template test<Count, true>(prim_ids_.data(), n.child[c], n.count[c], group[i],
+                                                          WatertightRay(group[i]), lane, counters, hit))
                   live &= ~(1u << i);
               }
               if (!live) return packet.valid;
@@ -713,17 +721,19 @@ class WideBvh {
   }
 
   /// The leaf loop of one ray: SIMD sphere or triangle leaves where those are attached and
-  /// leaf_fn takes a t (and, for triangles, names its routine); else the primitives' own boxes first, several at a time, and leaf_fn for the
+  /// leaf_fn takes a t (and, for triangles, names its routine; tri_ray is WatertightRay(ray),
+  /// computed once per ray); else the primitives' own boxes first, several at a time, and leaf_fn for the
   /// primitives whose box the ray may enter: for any hit in leaf order, for the closest hit
   /// nearest box first, stopping at the first box that starts beyond the hit found (as the
   /// traversal skips a child entered beyond it). Which primitive wins does not depend on the
   /// order: leaf_fn keeps the nearest, ties to the lower id.
   template <bool Count, bool AnyHit, class LeafFn>
-  bool leaf_loop(Ray& ray, const NodeRay& r, std::uint32_t first, std::uint32_t count, LeafFn& leaf_fn,
-                 TraversalCounters* counters, bool& hit) const {
+  bool leaf_loop(Ray& ray, const NodeRay& r, const WatertightRay& tri_ray, std::uint32_t first, std::uint32_t count,
+                 LeafFn& leaf_fn, TraversalCounters* counters, bool& hit) const {
     if constexpr (TriangleLeafFn<LeafFn>) {
       if (!triangles_.empty())
-        return triangles_.template test<Count, AnyHit>(prim_ids_.data(), first, count, ray, leaf_fn, counters, hit);
+        return triangles_.template test<Count, AnyHit>(prim_ids_.data(), first, count, ray, tri_ray, leaf_fn,
+                                                       counters, hit);
     }
     const bool sphere_leaves = AcceptingLeafFn<LeafFn> && !spheres_.empty();
     if (sphere_leaves || leaf_boxes_.empty())
