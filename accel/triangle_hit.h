@@ -42,10 +42,11 @@ struct WatertightRay {
 };
 
 /// tracer::watertight_distance<float> lane by lane: t of each triangle (> ray.tmin and above the
-/// bound on its own rounding error), or +inf.
+/// bound on its own rounding error), or +inf. Only the lanes of `live` (bit i: lane i) hold
+/// triangles; the others may hold anything and come back as whatever they compute.
 template <class Batch>
 [[gnu::always_inline]] inline Batch watertight_lanes(const TriangleLanes<Batch>& tri, const Ray& ray,
-                                                     const WatertightRay& w) {
+                                                     const WatertightRay& w, std::uint32_t live = ~0u) {
   const Batch inf(kInfinity);
   if (!w.valid) return inf;
   const Batch ox(ray.org[w.kx]), oy(ray.org[w.ky]), oz(ray.org[w.kz]);
@@ -61,8 +62,8 @@ template <class Batch>
   Batch e1 = cx * ay - cy * ax;
   Batch e2 = ax * by - ay * bx;
   const Batch zero(0.0f);
-  const auto on_edge = (e0 == zero) | (e1 == zero) | (e2 == zero);
-  if (xsimd::any(on_edge)) {
+  const std::uint32_t on_edge = simd::mask_bits<Batch>((e0 == zero) | (e1 == zero) | (e2 == zero)) & live;
+  if (on_edge) {
     // The lanes with an edge function of exactly 0 take all three again in double, as the
     // scalar routine does (a product of floats is exact there).
     constexpr std::size_t n = Batch::size;
@@ -70,7 +71,7 @@ template <class Batch>
     ax.store_aligned(vx[0]), bx.store_aligned(vx[1]), cx.store_aligned(vx[2]);
     ay.store_aligned(vy[0]), by.store_aligned(vy[1]), cy.store_aligned(vy[2]);
     e0.store_aligned(ev[0]), e1.store_aligned(ev[1]), e2.store_aligned(ev[2]);
-    for (std::uint32_t bits = simd::mask_bits<Batch>(on_edge); bits; bits &= bits - 1u) {
+    for (std::uint32_t bits = on_edge; bits; bits &= bits - 1u) {
       const int i = simd::first_lane(bits);
       const double dax = vx[0][i], day = vy[0][i], dbx = vx[1][i], dby = vy[1][i], dcx = vx[2][i], dcy = vy[2][i];
       ev[0][i] = float(dbx * dcy - dby * dcx);
@@ -80,6 +81,8 @@ template <class Batch>
     e0 = Batch::load_aligned(ev[0]), e1 = Batch::load_aligned(ev[1]), e2 = Batch::load_aligned(ev[2]);
   }
   const auto mixed_signs = ((e0 < zero) | (e1 < zero) | (e2 < zero)) & ((e0 > zero) | (e1 > zero) | (e2 > zero));
+  // Most rays pass beside every triangle of a leaf: then the distances are not needed.
+  if ((~simd::mask_bits<Batch>(mixed_signs) & live) == 0) return inf;
   const Batch det = e0 + e1 + e2;
   const Batch az = sz * a_z, bz = sz * b_z, cz = sz * c_z;
   const Batch t_scaled = e0 * az + e1 * bz + e2 * cz;
@@ -118,12 +121,13 @@ template <class Batch>
   const Batch tvx = Batch(ray.org.x) - tri.p[0][0], tvy = Batch(ray.org.y) - tri.p[0][1],
               tvz = Batch(ray.org.z) - tri.p[0][2];
   const Batch u = ((tvx * pvx + tvy * pvy) + tvz * pvz) * inv_det;
+  const auto u_in = (det != zero) & (xsimd::abs(det) < inf) & !(u < zero) & !(u > one);
+  if (xsimd::none(u_in)) return inf;  // most rays pass beside every triangle of a leaf
   const Batch qvx = tvy * e1z - e1y * tvz, qvy = tvz * e1x - e1z * tvx, qvz = tvx * e1y - e1x * tvy;
   const Batch v = ((dx * qvx + dy * qvy) + dz * qvz) * inv_det;
   const Batch t = ((e2x * qvx + e2y * qvy) + e2z * qvz) * inv_det;
   // The scalar's early exits, as one mask: each comparison is false for NaN there as here.
-  const auto keep = (det != zero) & (xsimd::abs(det) < inf) & !(u < zero) & !(u > one) & !(v < zero) &
-                    !(u + v > one) & (t > Batch(ray.tmin));
+  const auto keep = u_in & !(v < zero) & !(u + v > one) & (t > Batch(ray.tmin));
   return xsimd::select(keep, t, inf);
 }
 

@@ -61,8 +61,9 @@ class TriangleSoA {
       return false;
     }
     for (std::uint32_t j = 0; j < count; j += kLanes) {
-      const Batch t = watertight_lanes(load(begin + j), ray, w);
-      if (accept_lanes<AnyHit>(t, std::min(kLanes, count - j), ids, begin + j, ray, leaf_fn, hit)) return true;
+      const std::uint32_t lanes = std::min(kLanes, count - j);
+      const Batch t = watertight_lanes(load(begin + j), ray, w, (1u << lanes) - 1u);
+      if (accept_lanes<AnyHit>(t, lanes, ids, begin + j, ray, leaf_fn, hit)) return true;
     }
     return false;
   }
