@@ -19,7 +19,7 @@
 
 namespace accel {
 
-/// A packet leaf function that can take a t computed elsewhere (SIMD sphere leaves): the
+/// A packet leaf function that can take a t computed elsewhere (SIMD sphere and triangle leaves): the
 /// packet form of AcceptingLeafFn (simd_leaves.h).
 template <class LeafFn>
 concept AcceptingPacketLeafFn = requires(LeafFn& f, std::size_t lane, std::uint32_t id, float t, Ray& ray) {

@@ -265,7 +265,7 @@ json run_stability(const tracer::Scene& scene, const StabilityOptions& o, std::o
     json structures = json::array();
     progress << ", " << o.structures.size() << " structures" << std::flush;
     for (const CheckedStructure& s : o.structures) {
-      // As render builds it: the triangles' cell test, the wide BVHs' SIMD sphere leaves.
+      // As render builds it: the triangles' cell test, the wide BVHs' SIMD sphere and triangle leaves.
       accel::AnyAccel built = tracer::build_accel(s.name, s.params, scene_v.geometry, boxes);
       const Rendered r = render_once(scene_v, built, o, tracer::Precision::Float);
       const bool same_image = r.result.image == f.result.image;

@@ -183,7 +183,8 @@ class WideBvh {
   /// Any hit for a packet of up to 32 rays (the shadow rays of a tile's camera hits toward one
   /// light): bit i of the result is set when rays[i] is occluded, as occluded(rays[i]) says.
   /// Groups of up to simd::FloatPacket::size rays go down the tree together, unordered like
-  /// occluded() (any_hit_packet); trees with SIMD sphere leaves take the rays one by one.
+  /// occluded() (any_hit_packet); trees with SIMD sphere leaves take the rays one by one, and
+  /// with SIMD triangle leaves each ray that enters a leaf tests its triangles several at a time.
   template <bool Count = false, class LeafFn>
   std::uint32_t occluded_packet(std::span<const Ray> rays, LeafFn&& leaf_fn, TraversalCounters* counters = nullptr) const {
     using L = std::remove_reference_t<LeafFn>;
