@@ -7,12 +7,14 @@
 // the partitions reorder, so every pass reads memory in order instead of following ids into the
 // scene's boxes; on a million random spheres that chase was most of the build. A box is two
 // 4-float batches, so binning and bounding take one SIMD min and max per box. A partition also
-// returns the bounds of both sides, so no range is read again to bound it. The boxes are
-// reordered exactly as std::partition would reorder ids (the same swaps), so the trees are the
-// ones the id-based builder made.
+// returns the bounds of both sides, so no range is read again to bound it.
 
 #include "geometry.h"
 #include "simd.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
 
 #include <algorithm>
 #include <cstdint>
@@ -38,77 +40,103 @@ class BinnedSah {
 
   /// Scratch the search holds per primitive while a build runs (a box and an id).
   static constexpr std::size_t kBytesPerPrimitive = 36;
+  /// The most bins per axis (the builders' `bins` knob stops there).
+  static constexpr int kMaxBins = 256;
+  /// Ranges at least this long are binned and bounded by several tasks (build_tasks.h); the
+  /// bins merge by min, max and integer sums, which are exact in any order, so the split is the
+  /// one a single pass finds.
+  static constexpr std::uint32_t kParallelPass = 1u << 15;
 
-  /// `bins` per axis; the split cost is traversal_cost + (A_L N_L + A_R N_R) / A.
+  /// `bins` per axis (at most kMaxBins); the split cost is traversal_cost + (A_L N_L + A_R N_R) / A.
   BinnedSah(std::span<const Aabb> boxes, int bins, float traversal_cost)
-      : right_cost_(std::size_t(bins)), traversal_cost_(traversal_cost) {
-    for (int axis = 0; axis < 3; ++axis) {
-      axis_bins_[axis].resize(std::size_t(bins));
-      bin_counts_[axis].resize(std::size_t(bins));
-    }
+      : bins_(std::clamp(bins, 2, kMaxBins)), traversal_cost_(traversal_cost) {
     refs_.resize(boxes.size());
     ids_.resize(boxes.size());
-    for (std::size_t i = 0; i < boxes.size(); ++i) {
-      refs_[i] = Ref{{boxes[i].lo.x, boxes[i].lo.y, boxes[i].lo.z, 0.0f}, {boxes[i].hi.x, boxes[i].hi.y, boxes[i].hi.z, 0.0f}};
-      ids_[i] = std::uint32_t(i);
-    }
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, boxes.size(), kParallelPass), [&](const auto& r) {
+      for (std::size_t i = r.begin(); i < r.end(); ++i) {
+        refs_[i] = Ref{{boxes[i].lo.x, boxes[i].lo.y, boxes[i].lo.z, 0.0f}, {boxes[i].hi.x, boxes[i].hi.y, boxes[i].hi.z, 0.0f}};
+        ids_[i] = std::uint32_t(i);
+      }
+    });
   }
 
   /// The bounds of boxes [begin, end).
   Bounds bounds(std::uint32_t begin, std::uint32_t end) const {
-    Accumulator acc;
-    for (std::uint32_t i = begin; i < end; ++i) acc.add(refs_[i]);
-    return acc.bounds();
+    const auto pass = [&](std::uint32_t b, std::uint32_t e) {
+      Accumulator acc;
+      for (std::uint32_t i = b; i < e; ++i) acc.add(refs_[i]);
+      return acc;
+    };
+    if (end - begin < kParallelPass) return pass(begin, end).bounds();
+    return tbb::parallel_reduce(
+               tbb::blocked_range<std::uint32_t>(begin, end, kParallelPass / 2), Accumulator{},
+               [&](const auto& r, Accumulator acc) {
+                 acc.merge(pass(r.begin(), r.end()));
+                 return acc;
+               },
+               [](Accumulator a, const Accumulator& b) {
+                 a.merge(b);
+                 return a;
+               })
+        .bounds();
   }
 
   /// The cheapest plane for boxes [begin, end), whose centroids span `centroids` and whose box
-  /// has half-area `area`; axis -1 when every centroid coincides.
-  Split find(std::uint32_t begin, std::uint32_t end, const Aabb& centroids, float area) {
+  /// has half-area `area`; axis -1 when every centroid coincides. Safe to call on disjoint
+  /// ranges from several threads.
+  Split find(std::uint32_t begin, std::uint32_t end, const Aabb& centroids, float area) const {
     Split best;
-    const int bins = int(axis_bins_[0].size());
     // A flat range (area 0) still splits spatially: its children cost nothing but the step.
     const float inv_area = area > 0.0f ? 1.0f / area : 0.0f;
     // One pass bins every axis whose centroids spread (each box is read once, not once per
     // axis); then each axis is swept on its own.
-    bool spread[3] = {};
-    Binner which[3] = {};
+    AxisBins axes;
     for (int axis = 0; axis < 3; ++axis) {
-      spread[axis] = centroids.hi[axis] > centroids.lo[axis];
-      if (spread[axis]) which[axis] = binner(centroids, axis);
-      std::fill(axis_bins_[axis].begin(), axis_bins_[axis].end(), Bin{});
-      std::fill(bin_counts_[axis].begin(), bin_counts_[axis].end(), 0u);
+      axes.spread[axis] = centroids.hi[axis] > centroids.lo[axis];
+      if (axes.spread[axis]) axes.which[axis] = binner(centroids, axis);
     }
-    for (std::uint32_t i = begin; i < end; ++i) {
-      const Ref& r = refs_[i];
-      const Float4 lo = Float4::load_aligned(r.lo), hi = Float4::load_aligned(r.hi);
-      alignas(16) float c[4];
-      centroid(lo, hi).store_aligned(c);
-      for (int axis = 0; axis < 3; ++axis) {
-        if (!spread[axis]) continue;
-        const auto k = std::size_t(which[axis](c[axis]));
-        axis_bins_[axis][k].grow(lo, hi);
-        bin_counts_[axis][k]++;
-      }
+    axes.reset(bins_);
+    if (end - begin < kParallelPass) {
+      bin_range(begin, end, axes);
+    } else {
+      axes = tbb::parallel_reduce(
+          tbb::blocked_range<std::uint32_t>(begin, end, kParallelPass / 2), axes,
+          [&](const auto& r, AxisBins part) {
+            bin_range(r.begin(), r.end(), part);
+            return part;
+          },
+          [&](AxisBins a, const AxisBins& b) {
+            a.merge(b, bins_);
+            return a;
+          });
     }
+    float right_cost[kMaxBins];
     for (int axis = 0; axis < 3; ++axis) {
-      if (!spread[axis]) continue;
-      const std::vector<Bin>& bins_of = axis_bins_[axis];
-      const std::vector<std::uint32_t>& counts = bin_counts_[axis];
-      // Sweep from the right storing the cost of every right part, then from the left.
-      Bin acc;
+      if (!axes.spread[axis]) continue;
+      const Bin* bins_of = axes.bins[axis];
+      const std::uint32_t* counts = axes.counts[axis];
+      // Sweep from the right storing the cost of every right part, then from the left. An empty
+      // bin changes neither side's box nor count, so it is skipped: the plane after it costs
+      // exactly what the plane before it costs, and the first of equal costs wins.
+      Bin acc = Bin::empty();
       std::uint32_t n = 0;
-      for (int k = bins - 1; k > 0; --k) {
-        acc.grow(bins_of[std::size_t(k)]);
-        n += counts[std::size_t(k)];
-        right_cost_[std::size_t(k)] = n ? acc.box().half_area() * float(n) : 0.0f;
+      float cost_here = 0.0f;
+      for (int k = bins_ - 1; k > 0; --k) {
+        if (counts[k] != 0) {
+          acc.grow(bins_of[k]);
+          n += counts[k];
+          cost_here = acc.box().half_area() * float(n);
+        }
+        right_cost[k] = cost_here;
       }
-      acc = Bin{};
+      acc = Bin::empty();
       n = 0;
-      for (int k = 1; k < bins; ++k) {
-        acc.grow(bins_of[std::size_t(k - 1)]);
-        n += counts[std::size_t(k - 1)];
-        if (n == 0 || n == end - begin) continue;
-        const float cost = traversal_cost_ + (acc.box().half_area() * float(n) + right_cost_[std::size_t(k)]) * inv_area;
+      for (int k = 1; k < bins_; ++k) {
+        if (counts[k - 1] == 0) continue;
+        acc.grow(bins_of[k - 1]);
+        n += counts[k - 1];
+        if (n == end - begin) break;
+        const float cost = traversal_cost_ + (acc.box().half_area() * float(n) + right_cost[k]) * inv_area;
         if (cost < best.cost) best = {axis, k, cost};
       }
     }
@@ -128,24 +156,29 @@ class BinnedSah {
     }
     const Binner bin = binner(centroids, split.axis);
     const int axis = split.axis;
-    const auto goes_left = [&](const Ref& r) { return bin(0.5f * (r.lo[axis] + r.hi[axis])) < split.bin; };
+    // Lomuto's partition without a branch on the side (which a branch predicts no better than a
+    // coin): every box swaps with the first right-side box, and the left side grows by one when
+    // the box went left. [begin, first) is left, [first, i) right. Each box's bounds go to its
+    // side through a select, so both sides are bounded in the same pass.
+    const Float4 inf(kInfinity), minus_inf(-kInfinity);
     Accumulator l, r;
-    // std::partition's own loop (libstdc++), so the order matches it; each box's side is known
-    // once, and its bounds go to that side then. [begin, first) is left, [last, end) right.
-    std::uint32_t first = begin, last = end;
-    while (true) {
-      while (first != last && goes_left(refs_[first])) l.add(refs_[first++]);
-      if (first == last) break;
-      --last;  // refs_[first] goes right
-      while (first != last && !goes_left(refs_[last])) r.add(refs_[last--]);
-      if (first == last) {
-        r.add(refs_[first]);
-        break;
-      }
-      std::swap(refs_[first], refs_[last]);  // the one at last went left, the one at first right
-      std::swap(ids_[first], ids_[last]);
-      l.add(refs_[first++]);
-      r.add(refs_[last]);
+    std::uint32_t first = begin;
+    for (std::uint32_t i = begin; i < end; ++i) {
+      const Ref box = refs_[i];
+      const bool goes_left = bin(0.5f * (box.lo[axis] + box.hi[axis])) < split.bin;
+      const std::uint32_t id = ids_[i];
+      refs_[i] = refs_[first];
+      ids_[i] = ids_[first];
+      refs_[first] = box;
+      ids_[first] = id;
+      first += goes_left ? 1u : 0u;
+      const Float4 lo = Float4::load_aligned(box.lo), hi = Float4::load_aligned(box.hi);
+      const Float4 c = centroid(lo, hi);
+      const auto to_left = Float4::batch_bool_type(goes_left);
+      l.add_parts(xsimd::select(to_left, lo, inf), xsimd::select(to_left, hi, minus_inf),
+                  xsimd::select(to_left, c, inf), xsimd::select(to_left, c, minus_inf));
+      r.add_parts(xsimd::select(to_left, inf, lo), xsimd::select(to_left, minus_inf, hi),
+                  xsimd::select(to_left, inf, c), xsimd::select(to_left, minus_inf, c));
     }
     left = l.bounds();
     right = r.bounds();
@@ -167,10 +200,14 @@ class BinnedSah {
   /// Bit for bit Aabb::center() of the box, lane by lane.
   static Float4 centroid(const Float4& lo, const Float4& hi) { return Float4(0.5f) * (lo + hi); }
 
-  /// A bin's box (starting empty), grown a box at a time.
+  /// A bin's box, grown a box at a time. Trivial, so that the 3 x kMaxBins bins of a search
+  /// cost nothing until the `bins` in use are emptied.
   struct alignas(32) Bin {
-    float lo[4] = {kInfinity, kInfinity, kInfinity, kInfinity};
-    float hi[4] = {-kInfinity, -kInfinity, -kInfinity, -kInfinity};
+    float lo[4];
+    float hi[4];
+    static Bin empty() {
+      return {{kInfinity, kInfinity, kInfinity, kInfinity}, {-kInfinity, -kInfinity, -kInfinity, -kInfinity}};
+    }
     void grow(const Float4& blo, const Float4& bhi) {
       xsimd::min(Float4::load_aligned(lo), blo).store_aligned(lo);
       xsimd::max(Float4::load_aligned(hi), bhi).store_aligned(hi);
@@ -190,6 +227,20 @@ class BinnedSah {
       box_hi = xsimd::max(box_hi, hi);
       c_lo = xsimd::min(c_lo, c);
       c_hi = xsimd::max(c_hi, c);
+    }
+    /// Adds a box given as its corners and its centroid's lower and upper bound (the centroid
+    /// twice, or +inf and -inf to add nothing).
+    void add_parts(const Float4& lo, const Float4& hi, const Float4& c_low, const Float4& c_high) {
+      box_lo = xsimd::min(box_lo, lo);
+      box_hi = xsimd::max(box_hi, hi);
+      c_lo = xsimd::min(c_lo, c_low);
+      c_hi = xsimd::max(c_hi, c_high);
+    }
+    void merge(const Accumulator& o) {
+      box_lo = xsimd::min(box_lo, o.box_lo);
+      box_hi = xsimd::max(box_hi, o.box_hi);
+      c_lo = xsimd::min(c_lo, o.c_lo);
+      c_hi = xsimd::max(c_hi, o.c_hi);
     }
     Bounds bounds() const {
       alignas(16) float v[4][4];
@@ -215,15 +266,61 @@ class BinnedSah {
 
   Binner binner(const Aabb& centroids, int axis) const {
     const float extent = centroids.hi[axis] - centroids.lo[axis];
-    const std::size_t bins = axis_bins_[0].size();
-    return {centroids.lo[axis], float(bins) / extent, int(bins) - 1};
+    return {centroids.lo[axis], float(bins_) / extent, bins_ - 1};
+  }
+
+  /// The bins of the three axes of one find(), on the stack of the thread that runs it.
+  struct AxisBins {
+    bool spread[3] = {};  ///< Whether the axis' centroids spread (else it is not binned).
+    Binner which[3] = {};
+    Bin bins[3][kMaxBins];  ///< Only the first `bins` of each spread axis are used.
+    std::uint32_t counts[3][kMaxBins];
+    /// Empties the first n bins of every axis.
+    void reset(int n) {
+      for (int axis = 0; axis < 3; ++axis) {
+        std::fill_n(bins[axis], n, Bin::empty());
+        std::fill_n(counts[axis], n, 0u);
+      }
+    }
+    void merge(const AxisBins& o, int n) {
+      for (int axis = 0; axis < 3; ++axis) {
+        if (!spread[axis]) continue;
+        for (int k = 0; k < n; ++k) {
+          bins[axis][k].grow(o.bins[axis][k]);
+          counts[axis][k] += o.counts[axis][k];
+        }
+      }
+    }
+  };
+
+  /// Adds boxes [begin, end) to the bins of every spread axis. The three bin indices come from
+  /// one batch: lane by lane the Binner's float operations and its truncation, then its clamp.
+  void bin_range(std::uint32_t begin, std::uint32_t end, AxisBins& axes) const {
+    using Int4 = xsimd::batch<std::int32_t, Float4::arch_type>;
+    alignas(16) float lo_lanes[4] = {0.0f, 0.0f, 0.0f, 0.0f}, scale_lanes[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    for (int axis = 0; axis < 3; ++axis)
+      if (axes.spread[axis]) {
+        lo_lanes[axis] = axes.which[axis].lo;
+        scale_lanes[axis] = axes.which[axis].scale;
+      }
+    const Float4 lo4 = Float4::load_aligned(lo_lanes), scale4 = Float4::load_aligned(scale_lanes);
+    const Int4 zero(0), last(bins_ - 1);
+    for (std::uint32_t i = begin; i < end; ++i) {
+      const Ref& r = refs_[i];
+      const Float4 lo = Float4::load_aligned(r.lo), hi = Float4::load_aligned(r.hi);
+      alignas(16) std::int32_t k[4];
+      // An axis that does not spread lands in bin 0 (scale 0), whose contents find() never reads.
+      xsimd::clip(xsimd::batch_cast<std::int32_t>((centroid(lo, hi) - lo4) * scale4), zero, last).store_aligned(k);
+      for (int axis = 0; axis < 3; ++axis) {
+        axes.bins[axis][k[axis]].grow(lo, hi);
+        axes.counts[axis][k[axis]]++;
+      }
+    }
   }
 
   std::vector<Ref> refs_;
-  std::vector<std::uint32_t> ids_;                ///< The primitive id of each of refs_.
-  std::vector<Bin> axis_bins_[3];                 ///< Scratch of find(): the bins of each axis...
-  std::vector<std::uint32_t> bin_counts_[3];      ///< ...and how many boxes each holds.
-  std::vector<float> right_cost_;                 ///< Scratch of find(): SAH term of bins [k, bins).
+  std::vector<std::uint32_t> ids_;  ///< The primitive id of each of refs_.
+  int bins_;
   float traversal_cost_;
 };
 

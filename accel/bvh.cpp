@@ -1,6 +1,7 @@
 #include "bvh.h"
 
 #include "accel.h"
+#include "build_threads.h"
 
 namespace accel {
 
@@ -23,7 +24,10 @@ const knobs::KnobTable<BvhParams>& BvhParams::knobs() {
            .probes({0, 1, 2, 3, 5, 8, 12, 20}),
        K::number("traversal_cost", &BvhParams::traversal_cost, 0.0, 1000.0, "primitive tests",
                  "Cost of one traversal step relative to one primitive test (SAH C_trav / C_isect).")
-           .probes({0.1, 1000.0})});
+           .probes({0.1, 1000.0}),
+       K::integer(kBuildThreadsKnob, &BvhParams::build_threads, 0, 1024, "threads",
+                  "Threads the build may use (0 = every core); the tree is the same at any count.")
+           .probes({2})});
   return table;
 }
 

@@ -37,6 +37,8 @@ struct BvhParams {
   /// Cost of one traversal step relative to one primitive test (the SAH's C_trav / C_isect).
   /// 3 traced spheres8000 fastest (1 gave leaves of one sphere and 20% more node visits).
   float traversal_cost = 3.0f;
+  /// Threads the build may use (0 = every core). The tree is the same at any count.
+  int build_threads = 1;
 
   /// Name, range, unit and doc line of every knob above.
   static const knobs::KnobTable<BvhParams>& knobs();

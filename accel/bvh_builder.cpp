@@ -1,11 +1,15 @@
 // Binned SAH builder for Bvh (Wald 2007): centroids binned along each axis, the best plane by
-// the surface area heuristic, an in-place partition of the primitive ids, nodes appended to one
-// preallocated array with siblings adjacent.
+// the surface area heuristic, an in-place partition of the primitive ids, nodes allocated depth
+// first with siblings adjacent. Large ranges build their children as parallel tasks
+// (build_tasks.h); the tree is the same at any thread count.
 
 #include "bvh.h"
 
 #include "accel.h"
 #include "binned_sah.h"
+#include "build_tasks.h"
+
+#include <tbb/parallel_invoke.h>
 
 #include <algorithm>
 #include <chrono>
@@ -26,57 +30,98 @@ void pad_outward(BvhNode& n) {
   }
 }
 
+/// What a build task counts, merged into its parent's in the children's order once they are
+/// done, so the sums are the same at any thread count.
+struct Tally {
+  double sah_cost = 0.0;
+  std::uint64_t leaves = 0, max_leaf_prims = 0;
+  int max_depth_reached = 0;
+  void merge(const Tally& t) {
+    sah_cost += t.sah_cost;
+    leaves += t.leaves;
+    max_leaf_prims = std::max(max_leaf_prims, t.max_leaf_prims);
+    max_depth_reached = std::max(max_depth_reached, t.max_depth_reached);
+  }
+};
+
 class Builder {
  public:
-  using Nodes = std::vector<BvhNode, CacheLineAllocator<BvhNode>>;
+  using Slabs = NodeSlabs<BvhNode>;
 
-  Builder(std::span<const Aabb> boxes, const BvhParams& params, Nodes& nodes,
-          std::vector<std::uint32_t>& ids, BuildStats& stats)
-      : params_(params), nodes_(nodes), ids_(ids), stats_(stats), sah_(boxes, params.bins, params.traversal_cost) {}
+  Builder(std::span<const Aabb> boxes, const BvhParams& params, std::uint64_t node_capacity)
+      : params_(params), sah_(boxes, params.bins, params.traversal_cost), slabs_(node_capacity) {}
 
-  void run() {
-    nodes_.push_back({});  // the root
-    nodes_.push_back({});  // unused: sibling pairs start at even indices, one cache line each
-    const auto n = std::uint32_t(ids_.size());
-    build_node(0, 0, n, 0, sah_.bounds(0, n));
-    sah_.copy_ids(ids_);
+  /// Builds the tree and returns what it counted; then compact() and copy_ids() read it out.
+  Tally run(std::uint32_t n) {
+    Slabs::Cursor c = slabs_.whole();
+    slabs_.allocate(c, 2);  // the root, then an unused node: sibling pairs start at even indices
+    slabs_[1] = {};
+    Tally tally;
+    build_node(c, 0, 0, n, 0, sah_.bounds(0, n), tally);
+    slabs_.close_run(c);
+    return tally;
   }
 
+  template <class Nodes>
+  void compact(Nodes& nodes) {
+    slabs_.compact(nodes, [](BvhNode& node, const auto& renumber) {
+      if (!node.is_leaf()) node.first = renumber(node.first);
+    });
+  }
+
+  void copy_ids(std::vector<std::uint32_t>& ids) const { sah_.copy_ids(ids); }
+
  private:
-  void build_node(std::uint32_t index, std::uint32_t begin, std::uint32_t end, int depth,
-                  const BinnedSah::Bounds& bounds) {
+  void build_node(Slabs::Cursor& c, std::uint32_t index, std::uint32_t begin, std::uint32_t end, int depth,
+                  const BinnedSah::Bounds& bounds, Tally& tally) {
     const Aabb& box = bounds.box;
-    set_box(nodes_[index], box);
-    stats_.max_depth_reached = std::max(stats_.max_depth_reached, depth);
+    set_box(slabs_[index], box);
+    tally.max_depth_reached = std::max(tally.max_depth_reached, depth);
     const std::uint32_t count = end - begin;
     const float area = box.half_area();
 
-    if (count == 1 || depth >= params_.max_depth) return make_leaf(index, begin, count, area);
+    if (count == 1 || depth >= params_.max_depth) return make_leaf(index, begin, count, area, tally);
 
     const BinnedSah::Split split = sah_.find(begin, end, bounds.centroids, area);
     // Every centroid coinciding (no plane), the range is cut in half when a leaf would be too
     // big; otherwise the SAH decides between a leaf and the split.
     const bool small = count <= std::uint32_t(params_.max_leaf_size);
-    if (small && (split.axis < 0 || float(count) <= split.cost)) return make_leaf(index, begin, count, area);
+    if (small && (split.axis < 0 || float(count) <= split.cost)) return make_leaf(index, begin, count, area, tally);
     BinnedSah::Bounds left_bounds, right_bounds;
     const std::uint32_t mid = sah_.partition(begin, end, bounds.centroids, split, left_bounds, right_bounds);
 
-    const auto left = std::uint32_t(nodes_.size());
-    nodes_[index].first = left;
-    nodes_[index].count = 0;
-    nodes_.push_back({});
-    nodes_.push_back({});
-    stats_.sah_cost += kStatsTraversalCost * area;
-    build_node(left, begin, mid, depth + 1, left_bounds);
-    build_node(left + 1, mid, end, depth + 1, right_bounds);
+    const std::uint32_t left = slabs_.allocate(c, 2);
+    slabs_[index].first = left;
+    slabs_[index].count = 0;
+    tally.sah_cost += kStatsTraversalCost * area;
+    if (count < kForkPrims) {
+      build_node(c, left, begin, mid, depth + 1, left_bounds, tally);
+      build_node(c, left + 1, mid, end, depth + 1, right_bounds, tally);
+      return;
+    }
+    // Each child's subtree in a slab of its own (2 nodes per primitive bound any subtree).
+    slabs_.close_run(c);
+    Slabs::Cursor lc = slabs_.carve(c, 2 * (mid - begin)), rc = slabs_.carve(c, 2 * (end - mid));
+    Tally lt, rt;
+    tbb::parallel_invoke(
+        [&] {
+          build_node(lc, left, begin, mid, depth + 1, left_bounds, lt);
+          slabs_.close_run(lc);
+        },
+        [&] {
+          build_node(rc, left + 1, mid, end, depth + 1, right_bounds, rt);
+          slabs_.close_run(rc);
+        });
+    tally.merge(lt);
+    tally.merge(rt);
   }
 
-  void make_leaf(std::uint32_t index, std::uint32_t begin, std::uint32_t count, float area) {
-    nodes_[index].first = begin;
-    nodes_[index].count = count;
-    stats_.leaves++;
-    stats_.max_leaf_prims = std::max<std::uint64_t>(stats_.max_leaf_prims, count);
-    stats_.sah_cost += double(area) * double(count);
+  void make_leaf(std::uint32_t index, std::uint32_t begin, std::uint32_t count, float area, Tally& tally) {
+    slabs_[index].first = begin;
+    slabs_[index].count = count;
+    tally.leaves++;
+    tally.max_leaf_prims = std::max<std::uint64_t>(tally.max_leaf_prims, count);
+    tally.sah_cost += double(area) * double(count);
   }
 
   static void set_box(BvhNode& n, const Aabb& box) {
@@ -90,10 +135,8 @@ class Builder {
   static constexpr double kStatsTraversalCost = 1.0;
 
   const BvhParams& params_;
-  Nodes& nodes_;
-  std::vector<std::uint32_t>& ids_;
-  BuildStats& stats_;
   BinnedSah sah_;
+  Slabs slabs_;
 };
 
 }  // namespace
@@ -117,8 +160,16 @@ void Bvh::build(std::span<const Aabb> boxes, std::uint64_t max_memory_bytes) {
   stats_.primitives = n;
   stats_.prim_refs = n;
   if (n > 0) {
-    nodes_.reserve(node_bound);
-    Builder(boxes, params_, nodes_, prim_ids_, stats_).run();
+    run_with_build_threads(params_.build_threads, [&] {
+      Builder builder(boxes, params_, node_bound + 2);
+      const Tally tally = builder.run(std::uint32_t(n));
+      builder.compact(nodes_);
+      builder.copy_ids(prim_ids_);
+      stats_.sah_cost = tally.sah_cost;
+      stats_.leaves = tally.leaves;
+      stats_.max_leaf_prims = tally.max_leaf_prims;
+      stats_.max_depth_reached = tally.max_depth_reached;
+    });
     const float root_area = Aabb{{nodes_[0].lo[0], nodes_[0].lo[1], nodes_[0].lo[2]},
                                  {nodes_[0].hi[0], nodes_[0].hi[1], nodes_[0].hi[2]}}
                                 .half_area();

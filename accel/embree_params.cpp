@@ -1,5 +1,7 @@
 #include "embree_params.h"
 
+#include "build_threads.h"
+
 #include <string>
 #include <vector>
 
@@ -17,8 +19,8 @@ std::vector<knobs::Knob<P>> embree_knobs() {
                     "RTC_BUILD_QUALITY_MEDIUM or _HIGH (slower build, SAH splits)."),
           K::boolean("robust", static_cast<bool P::*>(&P::robust),
                      "RTC_SCENE_FLAG_ROBUST: conservative box tests, so no primitive is culled by rounding."),
-          K::integer("build_threads", static_cast<int P::*>(&P::build_threads), 0, 1024, "threads",
-                     "Threads Embree's builder may use; 0 = every core (the other builders use one).")
+          K::integer(kBuildThreadsKnob, static_cast<int P::*>(&P::build_threads), 0, 1024, "threads",
+                     "Threads Embree's TBB builder may use; 0 = every core (the BVHs' knob of the same name).")
               .probes({0, 1}),
           K::choice("isa", static_cast<EmbreeIsa P::*>(&P::isa),
                     {{"build", EmbreeIsa::Build},

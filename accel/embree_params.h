@@ -37,8 +37,8 @@ struct EmbreeParams {
   EmbreeQuality build_quality = EmbreeQuality::High;
   /// RTC_SCENE_FLAG_ROBUST: conservative box tests, so no primitive is culled by rounding.
   bool robust = true;
-  /// Threads Embree's TBB builder may use; 0 = Embree's default (every core). The other
-  /// builders are single-threaded, so 1 keeps build times comparable.
+  /// Threads Embree's TBB builder may use; 0 = Embree's default (every core). 1, like the
+  /// BVHs' build_threads, so that build times compare like for like.
   int build_threads = 1;
   /// Instruction set of Embree's kernels; one the CPU lacks is refused.
   EmbreeIsa isa = EmbreeIsa::Build;

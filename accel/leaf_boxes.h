@@ -24,18 +24,7 @@ class LeafBoxes {
   static constexpr std::uint32_t kLanes = std::uint32_t(Batch::size);
 
   /// Fills the planes for `ids` (entry j: the box of ids[j], padded by box_pad).
-  void build(std::span<const std::uint32_t> ids, std::span<const Aabb> boxes) {
-    const std::size_t n = ids.size() + kLanes;  // a leaf's last load may run past its end
-    for (auto& p : planes_) p.assign(n, 0.0f);
-    for (std::size_t j = 0; j < ids.size(); ++j) {
-      const Aabb& b = boxes[ids[j]];
-      for (int a = 0; a < 3; ++a) {
-        const float pad = box_pad(b.lo[a], b.hi[a]);
-        planes_[2 * a][j] = b.lo[a] - pad;
-        planes_[2 * a + 1][j] = b.hi[a] + pad;
-      }
-    }
-  }
+  void build(std::span<const std::uint32_t> ids, std::span<const Aabb> boxes);
   void clear() {
     for (auto& p : planes_) p = {};
   }

@@ -25,20 +25,9 @@ class TriangleSoA {
   /// Triangles tested per SIMD step.
   static constexpr std::uint32_t kLanes = std::uint32_t(Batch::size);
 
-  /// Fills the arrays for `ids` (every id < triangles.size()); no triangles leave it empty.
-  void build(std::span<const std::uint32_t> ids, std::span<const TriangleShape> triangles) {
-    *this = {};
-    if (triangles.empty()) return;
-    // Padded by one batch: a leaf's last load may run past its end (those lanes are ignored).
-    const std::size_t n = ids.size() + kLanes;
-    for (auto& c : coords_) c.assign(n, 0.0f);
-    for (std::size_t j = 0; j < ids.size(); ++j) {
-      const TriangleShape& t = triangles[ids[j]];
-      const Vec3* p[3] = {&t.p0, &t.p1, &t.p2};
-      for (int v = 0; v < 3; ++v)
-        for (int a = 0; a < 3; ++a) coords_[3 * v + a][j] = (*p[v])[a];
-    }
-  }
+  /// Fills the arrays for `ids` (every id < triangles.size()); no triangles leave it empty. Runs
+  /// in parallel loops (triangle_soa.cpp), within the caller's TBB arena.
+  void build(std::span<const std::uint32_t> ids, std::span<const TriangleShape> triangles);
 
   /// True when no triangles were attached (the structure then calls the leaf function per id).
   bool empty() const { return coords_[0].empty(); }

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstring>
 #include <random>
 #include <vector>
 
@@ -118,6 +119,41 @@ TEST(Bvh, StatisticsAreFilled) {
   EXPECT_GT(s.sah_cost, 1.0);
   EXPECT_LT(s.sah_cost, 100.0);
   EXPECT_GT(s.build_ms, 0.0);
+}
+
+/// Checks that the nodes lie in depth-first order, left child first: each inner node's sibling
+/// pair is the next pair after everything its earlier siblings' subtrees hold.
+void expect_depth_first(std::span<const accel::BvhNode> nodes, std::uint32_t node, std::uint32_t& next_pair) {
+  if (nodes[node].is_leaf()) return;
+  ASSERT_EQ(nodes[node].first, next_pair);
+  next_pair += 2;
+  expect_depth_first(nodes, nodes[node].first, next_pair);
+  expect_depth_first(nodes, nodes[node].first + 1, next_pair);
+}
+
+TEST(Bvh, TheTreeIsTheSameAtAnyThreadCount) {
+  // Large enough that ranges fork into tasks (accel/build_tasks.h) many levels deep and the
+  // first passes bin in parallel.
+  const auto boxes = random_boxes(60'000, 9);
+  BvhParams one;
+  const Bvh reference(boxes, one);
+  check_tree(reference, boxes, one);
+  std::uint32_t next_pair = 2;
+  expect_depth_first(reference.nodes(), 0, next_pair);
+  EXPECT_EQ(next_pair, reference.nodes().size());
+  for (int threads : {2, 3, 0}) {
+    SCOPED_TRACE(threads);
+    BvhParams p;
+    p.build_threads = threads;
+    const Bvh bvh(boxes, p);
+    ASSERT_EQ(bvh.nodes().size(), reference.nodes().size());
+    EXPECT_EQ(std::memcmp(bvh.nodes().data(), reference.nodes().data(), reference.nodes().size_bytes()), 0);
+    EXPECT_TRUE(std::ranges::equal(bvh.prim_ids(), reference.prim_ids()));
+    EXPECT_EQ(bvh.stats().sah_cost, reference.stats().sah_cost);
+    EXPECT_EQ(bvh.stats().leaves, reference.stats().leaves);
+    EXPECT_EQ(bvh.stats().max_depth_reached, reference.stats().max_depth_reached);
+    EXPECT_EQ(bvh.stats().max_leaf_prims, reference.stats().max_leaf_prims);
+  }
 }
 
 TEST(Bvh, ZeroPrimitives) {

@@ -9,9 +9,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <bit>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <random>
 #include <vector>
 
@@ -257,6 +259,46 @@ void occluded_packet_walks_each_ray_as_alone() {
 
 TEST(WideBvh, OccludedPacketWalksEachRayAsAlone4) { occluded_packet_walks_each_ray_as_alone<4>(); }
 TEST(WideBvh, OccludedPacketWalksEachRayAsAlone8) { occluded_packet_walks_each_ray_as_alone<8>(); }
+
+/// Checks that the nodes lie in depth first order: a node's inner children are the next nodes
+/// after everything its earlier children's subtrees hold, in slot order.
+template <int W>
+void expect_depth_first(std::span<const accel::WideNode<W>> nodes, std::uint32_t node, std::uint32_t& next) {
+  std::vector<std::uint32_t> inner;
+  for (int i = 0; i < W; ++i)
+    if (nodes[node].count[i] == 0 && nodes[node].planes[0][i] <= nodes[node].planes[1][i])
+      inner.push_back(nodes[node].child[i]);
+  for (std::uint32_t child : inner) ASSERT_EQ(child, next++);
+  for (std::uint32_t child : inner) expect_depth_first<W>(nodes, child, next);
+}
+
+template <int W>
+void same_tree_at_any_thread_count() {
+  // Large enough that ranges fork into tasks (accel/build_tasks.h) several levels deep and the
+  // first passes bin in parallel.
+  const auto boxes = random_boxes(60'000, 13, 20.0f);
+  const accel::WideBvhParams<W> one;
+  const accel::WideBvh<W> reference(boxes, one);
+  check_tree(reference, boxes, one);
+  std::uint32_t next = 1;
+  expect_depth_first<W>(reference.nodes(), 0, next);
+  EXPECT_EQ(next, reference.nodes().size());
+  for (int threads : {2, 3, 0}) {
+    SCOPED_TRACE(threads);
+    accel::WideBvhParams<W> p;
+    p.build_threads = threads;
+    const accel::WideBvh<W> bvh(boxes, p);
+    ASSERT_EQ(bvh.nodes().size(), reference.nodes().size());
+    EXPECT_EQ(std::memcmp(bvh.nodes().data(), reference.nodes().data(), reference.nodes().size_bytes()), 0);
+    EXPECT_TRUE(std::ranges::equal(bvh.prim_ids(), reference.prim_ids()));
+    EXPECT_EQ(bvh.stats().sah_cost, reference.stats().sah_cost);
+    EXPECT_EQ(bvh.stats().leaves, reference.stats().leaves);
+    EXPECT_EQ(bvh.stats().max_depth_reached, reference.stats().max_depth_reached);
+  }
+}
+
+TEST(WideBvh, TheTreeIsTheSameAtAnyThreadCount4) { same_tree_at_any_thread_count<4>(); }
+TEST(WideBvh, TheTreeIsTheSameAtAnyThreadCount8) { same_tree_at_any_thread_count<8>(); }
 
 TEST(WideBvh, AMillionSpheresBuildCompactly) {
   // The large-scene target: 10^6 random spheres, structure and sphere leaves together

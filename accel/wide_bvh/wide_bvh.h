@@ -66,6 +66,8 @@ struct WideBvhParams {
   int max_depth = 64;
   /// Cost of one wide node step relative to one primitive test (the SAH's C_trav / C_isect).
   float traversal_cost = 3.0f;
+  /// Threads the build may use (0 = every core). The tree is the same at any count.
+  int build_threads = 1;
 
   /// Name, range, unit and doc line of every knob above.
   static const knobs::KnobTable<WideBvhParams>& knobs();
@@ -111,12 +113,8 @@ class WideBvh {
   /// Stores the triangles of a triangle-only scene (triangles[i] is primitive i) beside the
   /// leaves, so that leaves test them in SIMD, by the leaf function's routine, for leaf functions
   /// that accept a precomputed t and name their routine (TriangleLeafFn). The time it takes is
-  /// added to stats().build_ms.
-  void attach_triangles(std::span<const TriangleShape> triangles) {
-    stats_.memory_bytes -= leaf_boxes_.memory_bytes();
-    leaf_boxes_.clear();  // triangle leaves test the triangles themselves
-    attach_leaf_shapes(kName, "triangles", prim_ids_, triangles, triangles_, stats_);
-  }
+  /// added to stats().build_ms. Runs on the build's threads (knob build_threads).
+  void attach_triangles(std::span<const TriangleShape> triangles);
 
   /// Closest hit: children front to back by entry distance; leaf_fn may shorten ray.tmax, and a
   /// child entered beyond it is skipped.

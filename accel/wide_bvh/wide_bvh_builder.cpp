@@ -1,12 +1,17 @@
 // Direct binned-SAH build of the wide BVHs: a node's range takes its SAH split, then the node
 // keeps splitting its child with the largest surface area (leaves excepted) until it has W
 // children, which is how a binary SAH tree is collapsed into a wide one, without storing the
-// binary tree. Children are allocated together, depth first.
+// binary tree. Children are allocated together, depth first. Large ranges build their inner
+// children as parallel tasks (build_tasks.h); the tree is the same at any thread count.
 
 #include "wide_bvh.h"
 
 #include "accel/accel.h"
 #include "accel/binned_sah.h"
+#include "accel/build_tasks.h"
+#include "accel/build_threads.h"
+
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <chrono>
@@ -35,40 +40,67 @@ const knobs::KnobTable<WideBvhParams<W>>& WideBvhParams<W>::knobs() {
            .probes({0, 1, 2, 3, 5, 8, 12, 20}),
        K::number("traversal_cost", &P::traversal_cost, 0.0, 1000.0, "primitive tests",
                  "Cost of one node step relative to one primitive test (SAH C_trav / C_isect).")
-           .probes({0.1, 1000.0})});
+           .probes({0.1, 1000.0}),
+       K::integer(kBuildThreadsKnob, &P::build_threads, 0, 1024, "threads",
+                  "Threads the build may use (0 = every core); the tree is the same at any count.")
+           .probes({2})});
   return table;
 }
 
 namespace {
 
+/// What a build task counts, merged into its parent's in the children's order once they are
+/// done, so the sums are the same at any thread count.
+struct Tally {
+  double sah_sum = 0.0;  ///< SAH terms (traversal cost 1, intersection cost 1), not normalised.
+  std::uint64_t leaves = 0, max_leaf_prims = 0;
+  int max_depth_reached = 0;
+  void merge(const Tally& t) {
+    sah_sum += t.sah_sum;
+    leaves += t.leaves;
+    max_leaf_prims = std::max(max_leaf_prims, t.max_leaf_prims);
+    max_depth_reached = std::max(max_depth_reached, t.max_depth_reached);
+  }
+};
+
 template <int W>
 class WideBuilder {
  public:
   using Node = WideNode<W>;
-  using Nodes = std::vector<Node, CacheLineAllocator<Node>>;
+  using Slabs = NodeSlabs<Node>;
 
-  WideBuilder(std::span<const Aabb> boxes, const WideBvhParams<W>& params, Nodes& nodes,
-              std::vector<std::uint32_t>& ids, BuildStats& stats)
-      : params_(params), nodes_(nodes), ids_(ids), stats_(stats), sah_(boxes, params.bins, params.traversal_cost) {}
+  /// Every inner node has at least two children, so a subtree over m primitives has fewer than m
+  /// inner nodes: `node_capacity` = max(n, 1) + 1 holds any tree over n.
+  WideBuilder(std::span<const Aabb> boxes, const WideBvhParams<W>& params, std::uint64_t node_capacity)
+      : params_(params), sah_(boxes, params.bins, params.traversal_cost), slabs_(node_capacity) {}
 
-  /// Builds the nodes and leaves the primitive ids in leaf order.
-  void run() {
-    const auto n = std::uint32_t(ids_.size());
-    const Range root = make_range(0, n, 0, sah_.bounds(0, n));
+  /// Builds the nodes over n primitives and returns what it counted.
+  Tally run(std::uint32_t n) {
+    Tally tally;
+    const Range root = make_range(0, n, 0, sah_.bounds(0, n), tally);
     root_area_ = root.area;
-    nodes_.push_back({});
+    typename Slabs::Cursor c = slabs_.whole();
+    slabs_.allocate(c, 1);
     if (root.leaf) {
       // One leaf holds everything: the root node has that leaf as its only child.
       Range kids[W] = {root};
-      fill_node(0, kids, 1);
+      fill_node(c, 0, kids, 1, tally);
     } else {
-      build_node(0, root, 0);
+      build_node(c, 0, root, 0, tally);
     }
-    sah_.copy_ids(ids_);
+    slabs_.close_run(c);
+    return tally;
   }
 
-  /// Sum of the SAH terms (traversal cost 1, intersection cost 1) before normalisation.
-  double sah_sum() const { return sah_sum_; }
+  template <class Nodes>
+  void compact(Nodes& nodes) {
+    slabs_.compact(nodes, [](Node& node, const auto& renumber) {
+      for (int i = 0; i < W; ++i)
+        if (node.count[i] == 0) node.child[i] = renumber(node.child[i]);
+    });
+  }
+
+  void copy_ids(std::vector<std::uint32_t>& ids) const { sah_.copy_ids(ids); }
   float root_area() const { return root_area_; }
 
  private:
@@ -82,7 +114,7 @@ class WideBuilder {
     BinnedSah::Split split;
   };
 
-  Range make_range(std::uint32_t begin, std::uint32_t end, int depth, const BinnedSah::Bounds& bounds) {
+  Range make_range(std::uint32_t begin, std::uint32_t end, int depth, const BinnedSah::Bounds& bounds, Tally& tally) {
     Range r;
     r.begin = begin;
     r.end = end;
@@ -91,7 +123,7 @@ class WideBuilder {
     r.centroids = bounds.centroids;
     r.area = r.box.half_area();
     const std::uint32_t count = end - begin;
-    stats_.max_depth_reached = std::max(stats_.max_depth_reached, depth);
+    tally.max_depth_reached = std::max(tally.max_depth_reached, depth);
     if (count <= 1 || depth >= params_.max_depth) return r;
     r.split = sah_.find(begin, end, r.centroids, r.area);
     const bool small = count <= std::uint32_t(params_.max_leaf_size);
@@ -100,19 +132,19 @@ class WideBuilder {
   }
 
   /// Splits `r` (not a leaf) into its two halves, at r.depth.
-  void split(const Range& r, Range& left, Range& right) {
+  void split(const Range& r, Range& left, Range& right, Tally& tally) {
     BinnedSah::Bounds left_bounds, right_bounds;
     const std::uint32_t mid = sah_.partition(r.begin, r.end, r.centroids, r.split, left_bounds, right_bounds);
-    left = make_range(r.begin, mid, r.depth, left_bounds);
-    right = make_range(mid, r.end, r.depth, right_bounds);
+    left = make_range(r.begin, mid, r.depth, left_bounds, tally);
+    right = make_range(mid, r.end, r.depth, right_bounds, tally);
   }
 
   /// Fills node `index` (a range that is not a leaf, at `depth`) and its subtree.
-  void build_node(std::uint32_t index, const Range& r, int depth) {
+  void build_node(typename Slabs::Cursor& c, std::uint32_t index, const Range& r, int depth, Tally& tally) {
     Range kids[W];
     Range whole = r;
     whole.depth = depth + 1;
-    split(whole, kids[0], kids[1]);
+    split(whole, kids[0], kids[1], tally);
     int k = 2;
     while (k < W) {
       int widest = -1;
@@ -120,20 +152,46 @@ class WideBuilder {
         if (!kids[i].leaf && (widest < 0 || kids[i].area > kids[widest].area)) widest = i;
       if (widest < 0) break;
       const Range opened = kids[widest];
-      split(opened, kids[widest], kids[k]);
+      split(opened, kids[widest], kids[k], tally);
       ++k;
     }
-    sah_sum_ += double(r.area);  // one node step
-    const std::uint32_t first_inner = fill_node(index, kids, k);
-    std::uint32_t next = first_inner;
-    for (int i = 0; i < k; ++i)
-      if (!kids[i].leaf) build_node(next++, kids[i], depth + 1);
+    tally.sah_sum += double(r.area);  // one node step
+    const std::uint32_t first_inner = fill_node(c, index, kids, k, tally);
+    if (r.end - r.begin < kForkPrims) {
+      std::uint32_t next = first_inner;
+      for (int i = 0; i < k; ++i)
+        if (!kids[i].leaf) build_node(c, next++, kids[i], depth + 1, tally);
+      return;
+    }
+    // Each inner child's subtree in a slab of its own, built as a task.
+    slabs_.close_run(c);
+    struct Task {
+      int kid;
+      std::uint32_t index;
+      typename Slabs::Cursor cursor;
+      Tally tally;
+    };
+    Task tasks[W];
+    int count = 0;
+    for (int i = 0; i < k; ++i) {
+      if (kids[i].leaf) continue;
+      tasks[count] = {i, first_inner + std::uint32_t(count), slabs_.carve(c, kids[i].end - kids[i].begin), {}};
+      ++count;
+    }
+    tbb::parallel_for(0, count, [&](int t) {
+      Task& task = tasks[t];
+      build_node(task.cursor, task.index, kids[task.kid], depth + 1, task.tally);
+      slabs_.close_run(task.cursor);
+    });
+    for (int t = 0; t < count; ++t) tally.merge(tasks[t].tally);
   }
 
   /// Writes node `index` from its k children; inner children get consecutive new nodes.
   /// Returns the index of the first of them.
-  std::uint32_t fill_node(std::uint32_t index, const Range* kids, int k) {
-    const auto first_inner = std::uint32_t(nodes_.size());
+  std::uint32_t fill_node(typename Slabs::Cursor& c, std::uint32_t index, const Range* kids, int k, Tally& tally) {
+    int inner = 0;
+    for (int i = 0; i < k; ++i) inner += kids[i].leaf ? 0 : 1;
+    const std::uint32_t first_inner = slabs_.allocate(c, std::uint32_t(inner));
     std::uint32_t next = first_inner;
     Node n;
     for (int i = 0; i < W; ++i) {
@@ -146,34 +204,30 @@ class WideBuilder {
         n.count[i] = 0;
         continue;
       }
-      const Range& c = kids[i];
+      const Range& kid = kids[i];
       for (int a = 0; a < 3; ++a) {
-        const float pad = box_pad(c.box.lo[a], c.box.hi[a]);
-        n.planes[2 * a][i] = c.box.lo[a] - pad;
-        n.planes[2 * a + 1][i] = c.box.hi[a] + pad;
+        const float pad = box_pad(kid.box.lo[a], kid.box.hi[a]);
+        n.planes[2 * a][i] = kid.box.lo[a] - pad;
+        n.planes[2 * a + 1][i] = kid.box.hi[a] + pad;
       }
-      if (c.leaf) {
-        n.child[i] = c.begin;
-        n.count[i] = c.end - c.begin;
-        stats_.leaves++;
-        stats_.max_leaf_prims = std::max<std::uint64_t>(stats_.max_leaf_prims, c.end - c.begin);
-        sah_sum_ += double(c.area) * double(c.end - c.begin);
+      if (kid.leaf) {
+        n.child[i] = kid.begin;
+        n.count[i] = kid.end - kid.begin;
+        tally.leaves++;
+        tally.max_leaf_prims = std::max<std::uint64_t>(tally.max_leaf_prims, kid.end - kid.begin);
+        tally.sah_sum += double(kid.area) * double(kid.end - kid.begin);
       } else {
         n.child[i] = next++;
         n.count[i] = 0;
       }
     }
-    nodes_[index] = n;
-    nodes_.resize(next);
+    slabs_[index] = n;
     return first_inner;
   }
 
   const WideBvhParams<W>& params_;
-  Nodes& nodes_;
-  std::vector<std::uint32_t>& ids_;
-  BuildStats& stats_;
   BinnedSah sah_;
-  double sah_sum_ = 0.0;
+  Slabs slabs_;
   float root_area_ = 0.0f;
 };
 
@@ -209,17 +263,32 @@ void WideBvh<W>::build(std::span<const Aabb> boxes, std::uint64_t budget_bytes) 
   stats_.primitives = n;
   stats_.prim_refs = n;
   if (n > 0) {
-    WideBuilder<W> builder(boxes, params_, nodes_, prim_ids_, stats_);
-    builder.run();
-    // Normalised by the root's area; a flat or point-like root (area 0) costs its leaf tests.
-    stats_.sah_cost = builder.root_area() > 0.0f ? builder.sah_sum() / double(builder.root_area()) : double(n);
+    run_with_build_threads(params_.build_threads, [&] {
+      WideBuilder<W> builder(boxes, params_, std::max<std::uint64_t>(n, 1) + 1);
+      const Tally tally = builder.run(std::uint32_t(n));
+      builder.compact(nodes_);
+      builder.copy_ids(prim_ids_);
+      stats_.leaves = tally.leaves;
+      stats_.max_leaf_prims = tally.max_leaf_prims;
+      stats_.max_depth_reached = tally.max_depth_reached;
+      // Normalised by the root's area; a flat or point-like root (area 0) costs its leaf tests.
+      stats_.sah_cost = builder.root_area() > 0.0f ? tally.sah_sum / double(builder.root_area()) : double(n);
+    });
   }
   nodes_.shrink_to_fit();
-  leaf_boxes_.build(prim_ids_, boxes);
+  run_with_build_threads(params_.build_threads, [&] { leaf_boxes_.build(prim_ids_, boxes); });
   stats_.nodes = nodes_.size();
   stats_.mean_leaf_prims = stats_.leaves ? double(n) / double(stats_.leaves) : 0.0;
   stats_.memory_bytes = memory_bytes();
   stats_.build_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+template <int W>
+void WideBvh<W>::attach_triangles(std::span<const TriangleShape> triangles) {
+  stats_.memory_bytes -= leaf_boxes_.memory_bytes();
+  leaf_boxes_.clear();  // triangle leaves test the triangles themselves
+  run_with_build_threads(params_.build_threads,
+                         [&] { attach_leaf_shapes(kName, "triangles", prim_ids_, triangles, triangles_, stats_); });
 }
 
 template struct WideBvhParams<4>;

@@ -1,0 +1,120 @@
+#pragma once
+// What the BVH builders need to build on several threads and still write the same nodes at any
+// thread count: a thread count resolved into a TBB arena, and node storage carved into slabs.
+//
+// A builder runs depth first. Where a range is large (kForkPrims or more primitives) its
+// children's subtrees become tasks, and each task gets a slab of the node array big enough for any
+// subtree of its size; it allocates from the slab's start as the one-thread build allocates from
+// the array's end. Where a range forks depends only on its size, never on the threads, so every
+// slab lies where it lies at one thread. compact() then closes the gaps between the slabs' used
+// runs, in address order, which gives exactly the depth-first layout one thread would have
+// written without slabs, and renumbers the child links.
+
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <cassert>
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <vector>
+
+namespace accel {
+
+/// Ranges of at least this many primitives build their children as parallel tasks.
+inline constexpr std::uint32_t kForkPrims = 1u << 12;
+
+/// Runs fn() in a TBB arena of `threads` threads (0 = every core); the parallel loops and tasks
+/// it starts use at most that many.
+template <class Fn>
+void run_with_build_threads(int threads, Fn&& fn) {
+  tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
+  arena.execute(fn);
+}
+
+/// A node array handed out in slabs, one per build task, compacted once the build is done.
+template <class Node>
+class NodeSlabs {
+ public:
+  /// Where a task allocates: [run_start, next) is its current run of written nodes, and it may
+  /// allocate up to `end`.
+  struct Cursor {
+    std::uint32_t run_start = 0, next = 0, end = 0;
+  };
+
+  /// Room for `capacity` nodes. The memory is left untouched until nodes are written, so the
+  /// unused tails of slabs cost address space only.
+  explicit NodeSlabs(std::uint64_t capacity)
+      : nodes_(std::make_unique_for_overwrite<Node[]>(std::size_t(capacity))), capacity_(capacity) {}
+
+  Node& operator[](std::uint32_t i) { return nodes_[i]; }
+
+  /// The slab of the whole array.
+  Cursor whole() const { return {0, 0, std::uint32_t(capacity_)}; }
+
+  /// `count` consecutive nodes from the cursor's slab; returns the first.
+  std::uint32_t allocate(Cursor& c, std::uint32_t count) {
+    const std::uint32_t first = c.next;
+    c.next += count;
+    assert(c.next <= c.end);
+    return first;
+  }
+
+  /// Ends the cursor's current run: call before carving slabs out of it, and when its task ends.
+  void close_run(Cursor& c) {
+    if (c.next > c.run_start) {
+      std::lock_guard<std::mutex> lock(mutex_);
+      runs_.push_back({c.run_start, c.next - c.run_start, 0});
+    }
+    c.run_start = c.next;
+  }
+
+  /// A slab of `capacity` nodes taken from the cursor's room, which then resumes after it.
+  Cursor carve(Cursor& c, std::uint32_t capacity) {
+    Cursor slab{c.next, c.next, c.next + capacity};
+    c.next += capacity;
+    c.run_start = c.next;
+    assert(c.next <= c.end);
+    return slab;
+  }
+
+  /// Copies the runs, in address order, into `out` (resized to fit), then calls
+  /// relink(node, renumber) on every node, where renumber(old index) gives a node's new index.
+  template <class Out, class Relink>
+  void compact(Out& out, Relink&& relink) {
+    std::sort(runs_.begin(), runs_.end(), [](const Run& a, const Run& b) { return a.start < b.start; });
+    std::uint32_t total = 0;
+    for (Run& r : runs_) {
+      r.new_start = total;
+      total += r.length;
+    }
+    out.resize(total);
+    const auto renumber = [&](std::uint32_t old) {
+      const auto it = std::upper_bound(runs_.begin(), runs_.end(), old,
+                                       [](std::uint32_t v, const Run& r) { return v < r.start; });
+      const Run& r = *(it - 1);
+      return r.new_start + (old - r.start);
+    };
+    tbb::parallel_for(std::size_t(0), runs_.size(), [&](std::size_t i) {
+      const Run& r = runs_[i];
+      for (std::uint32_t k = 0; k < r.length; ++k) {
+        Node& n = out[r.new_start + k];
+        n = nodes_[r.start + k];
+        relink(n, renumber);
+      }
+    });
+  }
+
+ private:
+  struct Run {
+    std::uint32_t start, length, new_start;
+  };
+
+  std::unique_ptr<Node[]> nodes_;
+  std::uint64_t capacity_;
+  std::mutex mutex_;
+  std::vector<Run> runs_;
+};
+
+}  // namespace accel
