@@ -27,6 +27,7 @@
 //   build/bin/bench_trace --benchmark_filter='Trace/spheres8000'
 
 #include "accel/accel.h"
+#include "accel/build_threads.h"
 #include "scenes_gen/generators.h"
 #include "scenes_gen/mesh_scenes.h"
 #include "tracer/build_accel.h"
@@ -50,10 +51,12 @@
 #include <filesystem>
 #include <ctime>
 #include <map>
+#include <optional>
 #include <memory>
 #include <random>
 #include <span>
 #include <string>
+#include <tuple>
 #include <vector>
 
 namespace {
@@ -200,8 +203,39 @@ std::vector<Ray> shadow_rays(const tracer::Scene& scene, const std::vector<Ray>&
 /// million triangles of instanced bunnies (mesh_grid). Present only with ../shared/meshes.
 const std::vector<std::string> kMeshScenes = {"bunny", "ogre", "nefertiti", "grid1M"};
 
+/// Ten million triangles of instanced bunnies, for build times only (naive could not check rays).
+const std::string kBuildOnlyMeshScene = "grid10M";
+
+/// The scaling figure's scenes: copies of spot (the smallest shared model, 5,856 triangles) in a
+/// grid, from one copy to 10^7 triangles, and spheres8000 with each sphere an icosphere of 0 to 3
+/// subdivisions (160,000 to 10,240,000 triangles).
+const std::vector<std::pair<std::string, std::uint64_t>> kSpotGrids = {
+    {"spots_6e3", 5'856}, {"spots_1e4", 10'000}, {"spots_1e5", 100'000}, {"spots_1e6", 1'000'000},
+    {"spots_1e7", 10'000'000}};
+const std::vector<std::pair<std::string, std::uint64_t>> kTessellated = {
+    {"tess_L0", 0}, {"tess_L1", 1}, {"tess_L2", 2}, {"tess_L3", 3}};
+
+/// The generator options of a scaling scene, or nothing for another name.
+std::optional<std::pair<std::string, scenes_gen::GenOptions>> scaling_scene(const std::string& name) {
+  for (const auto& [label, count] : kSpotGrids)
+    if (label == name) {
+      scenes_gen::GenOptions gen;
+      gen.model = "spot";
+      gen.count = count;
+      return std::pair{std::string("mesh_grid"), gen};
+    }
+  for (const auto& [label, level] : kTessellated)
+    if (label == name) {
+      scenes_gen::GenOptions gen;
+      gen.count = level;
+      return std::pair{std::string("tessellated_spheres"), gen};
+    }
+  return std::nullopt;
+}
+
 bool is_mesh_scene(const std::string& name) {
-  return std::find(kMeshScenes.begin(), kMeshScenes.end(), name) != kMeshScenes.end();
+  return name == kBuildOnlyMeshScene || scaling_scene(name) ||
+         std::find(kMeshScenes.begin(), kMeshScenes.end(), name) != kMeshScenes.end();
 }
 
 /// A benchmark scene by name: a generator's name, random1M (a million random spheres), or one
@@ -216,9 +250,11 @@ BenchScene& scene_named(const std::string& name) {
     if (name == "random1M") {
       generator = "random";
       gen.count = 1'000'000;
-    } else if (name == "grid1M") {
+    } else if (name == "grid1M" || name == kBuildOnlyMeshScene) {
       generator = "mesh_grid";
-      gen.count = 1'000'000;
+      gen.count = name == "grid1M" ? 1'000'000 : 10'000'000;
+    } else if (const auto scaling = scaling_scene(name)) {
+      std::tie(generator, gen) = *scaling;
     } else if (is_mesh_scene(name)) {
       generator = "mesh";
       gen.model = name;
@@ -663,6 +699,7 @@ void bm_build_default(benchmark::State& state, const std::string& scene_name, co
   const accel::BuildStats& s = accel::stats_of(a);
   state.counters["nodes"] = double(s.nodes);
   state.counters["bytes_per_prim"] = double(s.memory_bytes) / double(std::max<std::size_t>(bs.boxes.size(), 1));
+  state.counters["primitives"] = double(bs.boxes.size());
   // The structure's own build time: for Embree's native peers, the native build alone (their
   // stats_note), where the time above also counts the user-geometry build and copies before it.
   state.counters["reported_build_ms"] = s.build_ms;
@@ -822,6 +859,36 @@ void register_benchmarks() {
       timed_ms(benchmark::RegisterBenchmark(bm.c_str(), bm_build_default, scene, c.name, c.knobs)
           );
     }
+  // Build time on one thread and on two, at default knobs otherwise, for the BVHs and Embree's
+  // native triangles on the large meshes: the builds' scaling targets.
+  if (!mesh_scenes.empty())
+    for (const std::string& scene : {std::string("grid1M"), kBuildOnlyMeshScene})
+      for (const char* name : {"bvh", "bvh4", "bvh8", "embree_triangles"})
+        for (int threads : {1, 2}) {
+          if (!accel::find_structure(name)->built) continue;
+          const std::string bm = "BuildThreads/" + scene + "/" + name + "/threads:" + std::to_string(threads);
+          timed_ms(benchmark::RegisterBenchmark(bm.c_str(), bm_build_default, scene, std::string(name),
+                                                json{{accel::kBuildThreadsKnob, threads}}));
+        }
+  // The scaling figure (scripts/plot_triangle_scaling.py): every structure at its defaults and
+  // the SAH kd-tree, on spot grids and tessellated spheres of 5,856 to 10^7 triangles: build
+  // time and bytes, camera and incoherent rays.
+  if (!mesh_scenes.empty()) {
+    std::vector<std::string> scaling_scenes;
+    for (const auto& s : kSpotGrids) scaling_scenes.push_back(s.first);
+    for (const auto& s : kTessellated) scaling_scenes.push_back(s.first);
+    for (const std::string& scene : scaling_scenes)
+      for (const Config& c : trace_configs()) {
+        const accel::StructureInfo* info = accel::find_structure(c.name);
+        if ((c.label != c.name && c.label != "kdtree_sah") || info->selector || !applies(c.name, true)) continue;
+        const std::string build = "Scaling/" + scene + "/build/" + c.label;
+        timed_ms(benchmark::RegisterBenchmark(build.c_str(), bm_build_default, scene, c.name, c.knobs));
+        for (RaySet set : {RaySet::Coherent, RaySet::Incoherent}) {
+          const std::string bm = "Scaling/" + scene + "/" + ray_set_name(set) + "/" + c.label;
+          timed_ms(benchmark::RegisterBenchmark(bm.c_str(), bm_trace, scene, set, c.name, c.knobs));
+        }
+      }
+  }
   // Build time over the tree knobs; the BVH's target is <= 5 ms at (64, 4) for spheres8000.
   for (const Config& c : tree_configs()) {
     const std::string bm = "Build/spheres8000/" + c.label;

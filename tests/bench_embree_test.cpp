@@ -87,6 +87,41 @@ TEST(BenchEmbree, ANoisyWorkloadIsMeasuredAgainAndItsQuietPassIsTheOneReported) 
   EXPECT_NE(r.output.find("bench_embree: every target met"), std::string::npos) << r.output;
 }
 
+TEST(BenchEmbree, TheTriangleTableComparesBvh8WithBothEmbreeModesAndTimesTheBuilds) {
+  const ScriptRun r = run_bench_embree("triangles", "--table triangles");
+  ASSERT_EQ(r.status, 1) << r.output;
+  ASSERT_EQ(r.filters.size(), 1u) << r.output;  // quiet: one pass, and no two-thread renders
+  const std::regex first(r.filters[0]);
+  EXPECT_TRUE(std::regex_search("Trace/grid1M/shadow/embree_triangles_robust", first)) << r.filters[0];
+  EXPECT_TRUE(std::regex_search("BuildThreads/grid10M/bvh8/threads:2", first)) << r.filters[0];
+  EXPECT_FALSE(std::regex_search("Trace/spheres8000/coherent/bvh8", first)) << r.filters[0];
+  EXPECT_EQ(line_with(r.output, "| camera rays, one at a time |"), "") << r.output;  // no sphere table
+  EXPECT_NE(line_with(r.output, "| bunny, shadow rays, any hit |").find("| 100 | 110 | 105 | 108 | 1.050 | 1.080 |"),
+            std::string::npos)
+      << r.output;
+  EXPECT_NE(line_with(r.output, "| bunny, camera rays, packet against packet |").find("| - |"), std::string::npos)
+      << r.output;  // packets: no target
+  const std::string ogre = line_with(r.output, "| ogre, incoherent rays |");
+  EXPECT_NE(ogre.find("| 0.900 | 0.950 |"), std::string::npos) << ogre;
+  EXPECT_NE(ogre.find("both ≥ 1.0: NOT MET (10.0% short) |"), std::string::npos) << ogre;
+  // 520 ms against Embree's own build of 0.4 x 1100 = 440 ms: 1.18x, within 1.5x.
+  const std::string build = line_with(r.output, "| build of 10⁶ triangles, 1 thread |");
+  EXPECT_NE(build.find("| 520 | - | 440 | - | 0.846 | - | 1.0%, 1 | bvh8 ≤ 1.5× Embree's build: met |"),
+            std::string::npos)
+      << build;
+  // Two threads: 290 against 240.
+  EXPECT_NE(line_with(r.output, "| build of 10⁶ triangles, 2 threads |").find("| 0.828 |"), std::string::npos)
+      << r.output;
+  // 10^7 on one thread: 6240 ms.
+  EXPECT_NE(line_with(r.output, "| build of 10⁷ triangles, 1 thread |").find("| 6240 |"), std::string::npos) << r.output;
+  EXPECT_NE(line_with(r.output, "| build of 10⁷ triangles, 1 thread |").find("bvh8 ≤ 10 s: met |"), std::string::npos)
+      << r.output;
+  EXPECT_NE(line_with(r.output, "| bytes per triangle, 10⁶ triangles |").find("| 57.5 B | - | 84.5 B |"),
+            std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("bench_embree: targets not met: ogre, incoherent rays\n"), std::string::npos) << r.output;
+}
+
 TEST(BenchEmbree, AWorkloadNoisyInEveryPassIsMarkedAndItsMissedTargetFails) {
   const ScriptRun r = run_bench_embree("noisy", "--passes 3");
   ASSERT_EQ(r.status, 1) << r.output;

@@ -1,0 +1,73 @@
+// scripts/plot_triangle_scaling.py draws the triangle scaling figure (PNG and SVG) and writes the
+// numbers it plotted from bench_trace's Scaling benchmarks, leaving out a benchmark that failed
+// and everything that is not a Scaling benchmark; a file with none gives one line and status 2.
+
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+int run_plot(const std::string& input, const fs::path& out, const fs::path& log) {
+  const std::string cmd = std::string(ACCELBENCH_PYTHON) + " " ACCELBENCH_SOURCE_DIR "/scripts/plot_triangle_scaling.py " +
+                          input + " --out " + out.string() + " > " + log.string() + " 2>&1";
+  const int st = std::system(cmd.c_str());
+  return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+}
+
+std::string read(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+TEST(PlotTriangleScaling, DrawsTheFigureAndWritesItsNumbers) {
+  const fs::path dir = fs::temp_directory_path() / ("accelbench_plot_scaling_" + std::to_string(getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  ASSERT_EQ(run_plot(ACCELBENCH_SOURCE_DIR "/tests/data/small_scaling.json", dir / "fig", dir / "log.txt"), 0)
+      << read(dir / "log.txt");
+  EXPECT_EQ(read(dir / "fig.png").substr(1, 3), "PNG");
+  EXPECT_NE(read(dir / "fig.svg").find("<svg"), std::string::npos);
+  const nlohmann::json out = nlohmann::json::parse(read(dir / "fig.json"));
+  EXPECT_EQ(out["context"]["isa"], "avx2");
+  // Three scenes x two structures; the failed octree row and the Trace benchmark are left out.
+  ASSERT_EQ(out["rows"].size(), 6u) << out.dump(1);
+  bool seen = false;
+  for (const nlohmann::json& r : out["rows"]) {
+    EXPECT_NE(r["structure"], "octree");
+    if (r["scene"] == "tess_L0" && r["structure"] == "embree_triangles") {
+      seen = true;
+      EXPECT_EQ(r["triangles"].get<double>(), 160000.0);
+      EXPECT_DOUBLE_EQ(r["build_ms"].get<double>(), 19.2);
+      EXPECT_DOUBLE_EQ(r["bytes_per_triangle"].get<double>(), 84.5);
+      EXPECT_DOUBLE_EQ(r["camera_mrays_per_s"].get<double>(), 2.5);
+      EXPECT_DOUBLE_EQ(r["incoherent_mrays_per_s"].get<double>(), 1.25);
+    }
+  }
+  EXPECT_TRUE(seen);
+  fs::remove_all(dir);
+}
+
+TEST(PlotTriangleScaling, AFileWithoutScalingBenchmarksGivesOneLine) {
+  const fs::path dir = fs::temp_directory_path() / ("accelbench_plot_scaling_none_" + std::to_string(getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  EXPECT_EQ(run_plot(ACCELBENCH_SOURCE_DIR "/tests/data/small_bench_photon.json", dir / "fig", dir / "log.txt"), 2);
+  const std::string log = read(dir / "log.txt");
+  EXPECT_EQ(log.rfind("plot_triangle_scaling: no Scaling benchmark in ", 0), 0u) << log;
+  EXPECT_EQ(std::count(log.begin(), log.end(), '\n'), 1) << log;
+  EXPECT_FALSE(fs::exists(dir / "fig.png"));
+  fs::remove_all(dir);
+}
+
+}  // namespace
