@@ -25,6 +25,20 @@ namespace accel {
 /// Ranges of at least this many primitives build their children as parallel tasks.
 inline constexpr std::uint32_t kForkPrims = 1u << 12;
 
+/// What a build task counts, merged into its parent's in the children's order once they are
+/// done, so that the sums are the same at any thread count.
+struct BuildTally {
+  double sah = 0.0;  ///< Sum of the SAH terms (traversal cost 1, intersection cost 1), not normalised.
+  std::uint64_t leaves = 0, max_leaf_prims = 0;
+  int max_depth_reached = 0;
+  void merge(const BuildTally& t) {
+    sah += t.sah;
+    leaves += t.leaves;
+    max_leaf_prims = std::max(max_leaf_prims, t.max_leaf_prims);
+    max_depth_reached = std::max(max_depth_reached, t.max_depth_reached);
+  }
+};
+
 /// Runs fn() in a TBB arena of `threads` threads (0 = every core); the parallel loops and tasks
 /// it starts use at most that many.
 template <class Fn>

@@ -30,20 +30,6 @@ void pad_outward(BvhNode& n) {
   }
 }
 
-/// What a build task counts, merged into its parent's in the children's order once they are
-/// done, so the sums are the same at any thread count.
-struct Tally {
-  double sah_cost = 0.0;
-  std::uint64_t leaves = 0, max_leaf_prims = 0;
-  int max_depth_reached = 0;
-  void merge(const Tally& t) {
-    sah_cost += t.sah_cost;
-    leaves += t.leaves;
-    max_leaf_prims = std::max(max_leaf_prims, t.max_leaf_prims);
-    max_depth_reached = std::max(max_depth_reached, t.max_depth_reached);
-  }
-};
-
 class Builder {
  public:
   using Slabs = NodeSlabs<BvhNode>;
@@ -52,11 +38,11 @@ class Builder {
       : params_(params), sah_(boxes, params.bins, params.traversal_cost), slabs_(node_capacity) {}
 
   /// Builds the tree and returns what it counted; then compact() and copy_ids() read it out.
-  Tally run(std::uint32_t n) {
+  BuildTally run(std::uint32_t n) {
     Slabs::Cursor c = slabs_.whole();
     slabs_.allocate(c, 2);  // the root, then an unused node: sibling pairs start at even indices
     slabs_[1] = {};
-    Tally tally;
+    BuildTally tally;
     build_node(c, 0, 0, n, 0, sah_.bounds(0, n), tally);
     slabs_.close_run(c);
     return tally;
@@ -73,7 +59,7 @@ class Builder {
 
  private:
   void build_node(Slabs::Cursor& c, std::uint32_t index, std::uint32_t begin, std::uint32_t end, int depth,
-                  const BinnedSah::Bounds& bounds, Tally& tally) {
+                  const BinnedSah::Bounds& bounds, BuildTally& tally) {
     const Aabb& box = bounds.box;
     set_box(slabs_[index], box);
     tally.max_depth_reached = std::max(tally.max_depth_reached, depth);
@@ -93,7 +79,7 @@ class Builder {
     const std::uint32_t left = slabs_.allocate(c, 2);
     slabs_[index].first = left;
     slabs_[index].count = 0;
-    tally.sah_cost += kStatsTraversalCost * area;
+    tally.sah += kStatsTraversalCost * area;
     if (count < kForkPrims) {
       build_node(c, left, begin, mid, depth + 1, left_bounds, tally);
       build_node(c, left + 1, mid, end, depth + 1, right_bounds, tally);
@@ -102,7 +88,7 @@ class Builder {
     // Each child's subtree in a slab of its own (2 nodes per primitive bound any subtree).
     slabs_.close_run(c);
     Slabs::Cursor lc = slabs_.carve(c, 2 * (mid - begin)), rc = slabs_.carve(c, 2 * (end - mid));
-    Tally lt, rt;
+    BuildTally lt, rt;
     tbb::parallel_invoke(
         [&] {
           build_node(lc, left, begin, mid, depth + 1, left_bounds, lt);
@@ -116,12 +102,12 @@ class Builder {
     tally.merge(rt);
   }
 
-  void make_leaf(std::uint32_t index, std::uint32_t begin, std::uint32_t count, float area, Tally& tally) {
+  void make_leaf(std::uint32_t index, std::uint32_t begin, std::uint32_t count, float area, BuildTally& tally) {
     slabs_[index].first = begin;
     slabs_[index].count = count;
     tally.leaves++;
     tally.max_leaf_prims = std::max<std::uint64_t>(tally.max_leaf_prims, count);
-    tally.sah_cost += double(area) * double(count);
+    tally.sah += double(area) * double(count);
   }
 
   static void set_box(BvhNode& n, const Aabb& box) {
@@ -162,10 +148,10 @@ void Bvh::build(std::span<const Aabb> boxes, std::uint64_t max_memory_bytes) {
   if (n > 0) {
     run_with_build_threads(params_.build_threads, [&] {
       Builder builder(boxes, params_, node_bound + 2);
-      const Tally tally = builder.run(std::uint32_t(n));
+      const BuildTally tally = builder.run(std::uint32_t(n));
       builder.compact(nodes_);
       builder.copy_ids(prim_ids_);
-      stats_.sah_cost = tally.sah_cost;
+      stats_.sah_cost = tally.sah;
       stats_.leaves = tally.leaves;
       stats_.max_leaf_prims = tally.max_leaf_prims;
       stats_.max_depth_reached = tally.max_depth_reached;

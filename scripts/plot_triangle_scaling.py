@@ -8,7 +8,8 @@ bench_trace's Scaling benchmarks (copies of spot in a grid, and spheres8000 tess
     scripts/plot_triangle_scaling.py scaling.json [more.json ...] --out results/triangle_scaling
 
 Several files may be given (one run split by filter); a benchmark measured in more than one keeps
-the last. Writes OUT.png, OUT.svg and OUT.json (the numbers plotted, with the machine and ISA).
+the last. Writes OUT.png, OUT.svg and OUT.json (the numbers plotted, with the machine and ISA); a
+benchmark that failed its check against naive is left out, named on stderr and in OUT.json.
 Exit status 2, with one line, when a file cannot be read or holds no Scaling benchmark.
 """
 
@@ -33,8 +34,9 @@ def fail(message):
 
 
 def read(paths):
-    """{(scene, structure): {"triangles", "build", "bytes", "coherent", "incoherent"}} and the context."""
-    rows, context = {}, {}
+    """{(scene, structure): {"triangles", "build", "bytes", "coherent", "incoherent"}}, the context, and
+    {benchmark: message} of the benchmarks that failed their check against naive (left out)."""
+    rows, context, failed = {}, {}, {}
     for path in paths:
         try:
             with open(path) as f:
@@ -46,7 +48,10 @@ def read(paths):
         for b in benchmarks:
             name = b.get("run_name", b.get("name", ""))
             parts = name.split("/")
-            if len(parts) != 4 or parts[0] != "Scaling" or b.get("error_occurred"):
+            if len(parts) != 4 or parts[0] != "Scaling":
+                continue
+            if b.get("error_occurred"):
+                failed[name] = b.get("error_message", "?")
                 continue
             if b.get("run_type") == "aggregate" and b.get("aggregate_name") != "median":
                 continue
@@ -61,7 +66,7 @@ def read(paths):
                 row[what] = b["rays"] / 1e6
     if not rows:
         fail("no Scaling benchmark in %s" % ", ".join(paths))
-    return rows, context
+    return rows, context, failed
 
 
 def main():
@@ -69,7 +74,9 @@ def main():
     parser.add_argument("inputs", nargs="+")
     parser.add_argument("--out", default="results/triangle_scaling")
     args = parser.parse_args()
-    rows, context = read(args.inputs)
+    rows, context, failed = read(args.inputs)
+    for name, message in sorted(failed.items()):
+        print("plot_triangle_scaling: left out, failed its check: %s: %s" % (name, message), file=sys.stderr)
     # A scene's triangle count comes from its build rows.
     triangles = {}
     for (scene, _), row in rows.items():
@@ -113,7 +120,7 @@ def main():
     fig.savefig(args.out + ".svg")
     with open(args.out + ".json", "w") as f:
         json.dump({"context": {k: context.get(k) for k in ("isa", "num_cpus", "mhz_per_cpu", "date", "host_name")},
-                   "rows": table}, f, indent=1)
+                   "rows": table, "failed": failed}, f, indent=1)
     print("plot_triangle_scaling: wrote %s.png, %s.svg and %s.json" % (args.out, args.out, args.out))
     return 0
 

@@ -2,6 +2,8 @@
 // numbers it plotted from bench_trace's Scaling benchmarks, leaving out a benchmark that failed
 // and everything that is not a Scaling benchmark; a file with none gives one line and status 2.
 
+#include "cli_run.h"
+
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
@@ -9,7 +11,6 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -18,11 +19,11 @@ namespace {
 
 namespace fs = std::filesystem;
 
-int run_plot(const std::string& input, const fs::path& out, const fs::path& log) {
-  const std::string cmd = std::string(ACCELBENCH_PYTHON) + " " ACCELBENCH_SOURCE_DIR "/scripts/plot_triangle_scaling.py " +
-                          input + " --out " + out.string() + " > " + log.string() + " 2>&1";
-  const int st = std::system(cmd.c_str());
-  return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+int run_plot(const std::string& input, const fs::path& out, std::string& log) {
+  const cli_run::CliRun r = cli_run::run(std::string(ACCELBENCH_PYTHON) + " " ACCELBENCH_SOURCE_DIR
+                                         "/scripts/plot_triangle_scaling.py " + input + " --out " + out.string());
+  log = r.output;
+  return r.status;
 }
 
 std::string read(const fs::path& p) {
@@ -34,8 +35,8 @@ TEST(PlotTriangleScaling, DrawsTheFigureAndWritesItsNumbers) {
   const fs::path dir = fs::temp_directory_path() / ("accelbench_plot_scaling_" + std::to_string(getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir);
-  ASSERT_EQ(run_plot(ACCELBENCH_SOURCE_DIR "/tests/data/small_scaling.json", dir / "fig", dir / "log.txt"), 0)
-      << read(dir / "log.txt");
+  std::string log;
+  ASSERT_EQ(run_plot(ACCELBENCH_SOURCE_DIR "/tests/data/small_scaling.json", dir / "fig", log), 0) << log;
   EXPECT_EQ(read(dir / "fig.png").substr(1, 3), "PNG");
   EXPECT_NE(read(dir / "fig.svg").find("<svg"), std::string::npos);
   const nlohmann::json out = nlohmann::json::parse(read(dir / "fig.json"));
@@ -55,6 +56,11 @@ TEST(PlotTriangleScaling, DrawsTheFigureAndWritesItsNumbers) {
     }
   }
   EXPECT_TRUE(seen);
+  // The failed benchmark is named, on stderr and in the JSON.
+  EXPECT_EQ(out["failed"]["Scaling/tess_L0/coherent/octree"], "validation failed");
+  EXPECT_NE(log.find("left out, failed its check: Scaling/tess_L0/coherent/octree: validation failed"),
+            std::string::npos)
+      << log;
   fs::remove_all(dir);
 }
 
@@ -62,8 +68,8 @@ TEST(PlotTriangleScaling, AFileWithoutScalingBenchmarksGivesOneLine) {
   const fs::path dir = fs::temp_directory_path() / ("accelbench_plot_scaling_none_" + std::to_string(getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir);
-  EXPECT_EQ(run_plot(ACCELBENCH_SOURCE_DIR "/tests/data/small_bench_photon.json", dir / "fig", dir / "log.txt"), 2);
-  const std::string log = read(dir / "log.txt");
+  std::string log;
+  EXPECT_EQ(run_plot(ACCELBENCH_SOURCE_DIR "/tests/data/small_bench_photon.json", dir / "fig", log), 2);
   EXPECT_EQ(log.rfind("plot_triangle_scaling: no Scaling benchmark in ", 0), 0u) << log;
   EXPECT_EQ(std::count(log.begin(), log.end(), '\n'), 1) << log;
   EXPECT_FALSE(fs::exists(dir / "fig.png"));

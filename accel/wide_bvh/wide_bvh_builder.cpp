@@ -49,20 +49,6 @@ const knobs::KnobTable<WideBvhParams<W>>& WideBvhParams<W>::knobs() {
 
 namespace {
 
-/// What a build task counts, merged into its parent's in the children's order once they are
-/// done, so the sums are the same at any thread count.
-struct Tally {
-  double sah_sum = 0.0;  ///< SAH terms (traversal cost 1, intersection cost 1), not normalised.
-  std::uint64_t leaves = 0, max_leaf_prims = 0;
-  int max_depth_reached = 0;
-  void merge(const Tally& t) {
-    sah_sum += t.sah_sum;
-    leaves += t.leaves;
-    max_leaf_prims = std::max(max_leaf_prims, t.max_leaf_prims);
-    max_depth_reached = std::max(max_depth_reached, t.max_depth_reached);
-  }
-};
-
 template <int W>
 class WideBuilder {
  public:
@@ -75,8 +61,8 @@ class WideBuilder {
       : params_(params), sah_(boxes, params.bins, params.traversal_cost), slabs_(node_capacity) {}
 
   /// Builds the nodes over n primitives and returns what it counted.
-  Tally run(std::uint32_t n) {
-    Tally tally;
+  BuildTally run(std::uint32_t n) {
+    BuildTally tally;
     const Range root = make_range(0, n, 0, sah_.bounds(0, n), tally);
     root_area_ = root.area;
     typename Slabs::Cursor c = slabs_.whole();
@@ -114,7 +100,7 @@ class WideBuilder {
     BinnedSah::Split split;
   };
 
-  Range make_range(std::uint32_t begin, std::uint32_t end, int depth, const BinnedSah::Bounds& bounds, Tally& tally) {
+  Range make_range(std::uint32_t begin, std::uint32_t end, int depth, const BinnedSah::Bounds& bounds, BuildTally& tally) {
     Range r;
     r.begin = begin;
     r.end = end;
@@ -132,7 +118,7 @@ class WideBuilder {
   }
 
   /// Splits `r` (not a leaf) into its two halves, at r.depth.
-  void split(const Range& r, Range& left, Range& right, Tally& tally) {
+  void split(const Range& r, Range& left, Range& right, BuildTally& tally) {
     BinnedSah::Bounds left_bounds, right_bounds;
     const std::uint32_t mid = sah_.partition(r.begin, r.end, r.centroids, r.split, left_bounds, right_bounds);
     left = make_range(r.begin, mid, r.depth, left_bounds, tally);
@@ -140,7 +126,7 @@ class WideBuilder {
   }
 
   /// Fills node `index` (a range that is not a leaf, at `depth`) and its subtree.
-  void build_node(typename Slabs::Cursor& c, std::uint32_t index, const Range& r, int depth, Tally& tally) {
+  void build_node(typename Slabs::Cursor& c, std::uint32_t index, const Range& r, int depth, BuildTally& tally) {
     Range kids[W];
     Range whole = r;
     whole.depth = depth + 1;
@@ -155,7 +141,7 @@ class WideBuilder {
       split(opened, kids[widest], kids[k], tally);
       ++k;
     }
-    tally.sah_sum += double(r.area);  // one node step
+    tally.sah += double(r.area);  // one node step
     const std::uint32_t first_inner = fill_node(c, index, kids, k, tally);
     if (r.end - r.begin < kForkPrims) {
       std::uint32_t next = first_inner;
@@ -169,7 +155,7 @@ class WideBuilder {
       int kid;
       std::uint32_t index;
       typename Slabs::Cursor cursor;
-      Tally tally;
+      BuildTally tally;
     };
     Task tasks[W];
     int count = 0;
@@ -188,7 +174,7 @@ class WideBuilder {
 
   /// Writes node `index` from its k children; inner children get consecutive new nodes.
   /// Returns the index of the first of them.
-  std::uint32_t fill_node(typename Slabs::Cursor& c, std::uint32_t index, const Range* kids, int k, Tally& tally) {
+  std::uint32_t fill_node(typename Slabs::Cursor& c, std::uint32_t index, const Range* kids, int k, BuildTally& tally) {
     int inner = 0;
     for (int i = 0; i < k; ++i) inner += kids[i].leaf ? 0 : 1;
     const std::uint32_t first_inner = slabs_.allocate(c, std::uint32_t(inner));
@@ -215,7 +201,7 @@ class WideBuilder {
         n.count[i] = kid.end - kid.begin;
         tally.leaves++;
         tally.max_leaf_prims = std::max<std::uint64_t>(tally.max_leaf_prims, kid.end - kid.begin);
-        tally.sah_sum += double(kid.area) * double(kid.end - kid.begin);
+        tally.sah += double(kid.area) * double(kid.end - kid.begin);
       } else {
         n.child[i] = next++;
         n.count[i] = 0;
@@ -265,14 +251,14 @@ void WideBvh<W>::build(std::span<const Aabb> boxes, std::uint64_t budget_bytes) 
   if (n > 0) {
     run_with_build_threads(params_.build_threads, [&] {
       WideBuilder<W> builder(boxes, params_, std::max<std::uint64_t>(n, 1) + 1);
-      const Tally tally = builder.run(std::uint32_t(n));
+      const BuildTally tally = builder.run(std::uint32_t(n));
       builder.compact(nodes_);
       builder.copy_ids(prim_ids_);
       stats_.leaves = tally.leaves;
       stats_.max_leaf_prims = tally.max_leaf_prims;
       stats_.max_depth_reached = tally.max_depth_reached;
       // Normalised by the root's area; a flat or point-like root (area 0) costs its leaf tests.
-      stats_.sah_cost = builder.root_area() > 0.0f ? tally.sah_sum / double(builder.root_area()) : double(n);
+      stats_.sah_cost = builder.root_area() > 0.0f ? tally.sah / double(builder.root_area()) : double(n);
     });
   }
   nodes_.shrink_to_fit();
