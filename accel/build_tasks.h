@@ -10,6 +10,8 @@
 // runs, in address order, which gives exactly the depth-first layout one thread would have
 // written without slabs, and renumbers the child links.
 
+#include "stats.h"
+
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
@@ -36,6 +38,14 @@ struct BuildTally {
     leaves += t.leaves;
     max_leaf_prims = std::max(max_leaf_prims, t.max_leaf_prims);
     max_depth_reached = std::max(max_depth_reached, t.max_depth_reached);
+  }
+  /// Writes the counts into `stats`, the SAH cost normalised by the root's half-area; a flat or
+  /// point-like root (area 0) costs its leaf tests, `primitives`.
+  void write_to(BuildStats& stats, float root_area, std::uint64_t primitives) const {
+    stats.leaves = leaves;
+    stats.max_leaf_prims = max_leaf_prims;
+    stats.max_depth_reached = max_depth_reached;
+    stats.sah_cost = root_area > 0.0f ? sah / double(root_area) : double(primitives);
   }
 };
 

@@ -151,16 +151,11 @@ void Bvh::build(std::span<const Aabb> boxes, std::uint64_t max_memory_bytes) {
       const BuildTally tally = builder.run(std::uint32_t(n));
       builder.compact(nodes_);
       builder.copy_ids(prim_ids_);
-      stats_.sah_cost = tally.sah;
-      stats_.leaves = tally.leaves;
-      stats_.max_leaf_prims = tally.max_leaf_prims;
-      stats_.max_depth_reached = tally.max_depth_reached;
+      const float root_area = Aabb{{nodes_[0].lo[0], nodes_[0].lo[1], nodes_[0].lo[2]},
+                                   {nodes_[0].hi[0], nodes_[0].hi[1], nodes_[0].hi[2]}}
+                                  .half_area();
+      tally.write_to(stats_, root_area, n);
     });
-    const float root_area = Aabb{{nodes_[0].lo[0], nodes_[0].lo[1], nodes_[0].lo[2]},
-                                 {nodes_[0].hi[0], nodes_[0].hi[1], nodes_[0].hi[2]}}
-                                .half_area();
-    // Normalised by the root's area; a flat or point-like root (area 0) costs its leaf tests.
-    stats_.sah_cost = root_area > 0.0f ? stats_.sah_cost / root_area : double(n);
     for (BvhNode& node : nodes_) pad_outward(node);
   }
   nodes_.shrink_to_fit();

@@ -254,11 +254,7 @@ void WideBvh<W>::build(std::span<const Aabb> boxes, std::uint64_t budget_bytes) 
       const BuildTally tally = builder.run(std::uint32_t(n));
       builder.compact(nodes_);
       builder.copy_ids(prim_ids_);
-      stats_.leaves = tally.leaves;
-      stats_.max_leaf_prims = tally.max_leaf_prims;
-      stats_.max_depth_reached = tally.max_depth_reached;
-      // Normalised by the root's area; a flat or point-like root (area 0) costs its leaf tests.
-      stats_.sah_cost = builder.root_area() > 0.0f ? tally.sah / double(builder.root_area()) : double(n);
+      tally.write_to(stats_, builder.root_area(), n);
     });
   }
   nodes_.shrink_to_fit();
