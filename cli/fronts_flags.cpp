@@ -3,6 +3,7 @@
 #include "harness/accuracy_knobs.h"
 #include "integrators/integrators.h"
 #include "harness/sweep_definition.h"
+#include "harness/sweep_results.h"
 
 #include <CLI/CLI.hpp>
 
@@ -64,6 +65,27 @@ double number(const std::string& s, const std::string& flag) {
   if (r.ec != std::errc() || r.ptr != s.data() + s.size() || !std::isfinite(v))
     throw SweepError(flag + ": '" + s + "' is not a number");
   return v;
+}
+
+/// The smallest error on the fronts of the results file at `path` in `metric`; throws naming
+/// --floor-target-from.
+double floor_target_from(const std::string& path, const std::string& metric) {
+  const std::string flag = "--floor-target-from " + path;
+  json results;
+  try {
+    results = read_results_file(path);
+  } catch (const std::exception& e) {
+    throw SweepError(flag + ": " + e.what());
+  }
+  double smallest = std::numeric_limits<double>::infinity();
+  for (const json& front : results.value("fronts", json::array())) {
+    if (front.value("metric", "") != metric)
+      throw SweepError(flag + ": its fronts are in " + front.value("metric", "?") + ", not --metric " + metric);
+    const json& e = front.value("smallest_error", json());
+    if (e.is_number() && e.get<double>() > 0.0) smallest = std::min(smallest, e.get<double>());
+  }
+  if (!std::isfinite(smallest)) throw SweepError(flag + ": the file has no front with a non-zero error");
+  return smallest;
 }
 
 }  // namespace
@@ -145,6 +167,22 @@ void add_fronts_flags(CLI::App& cmd, FrontsFlags& f) {
   cmd.add_flag("--refresh-reference", f.refresh, "Render the references again and overwrite the cache");
   cmd.add_option("--name", f.name, "Name of the run; default output results/<name>.json (default fronts-SCENE)");
   cmd.add_option("--seed", f.seed, "Generator seed of generated scenes")->capture_default_str();
+  cmd.add_option("--estimator", f.estimator,
+                 "How a progressive reference (ppm) combines its stages: plain, or richardson (its leading bias cancelled)")
+      ->capture_default_str();
+  cmd.add_option("--floor-target", f.floor_target,
+                 "Stopping rule of progressive references: 8x the passes, level after level, until the floor (in --metric) "
+                 "is at most this (0: the recipe's passes only)")
+      ->check(CLI::Range(0.0, std::numeric_limits<double>::max()));
+  cmd.add_option("--floor-target-from", f.floor_target_from,
+                 "Results file of an earlier run of the fronts: the target is its smallest error over --floor-ratio");
+  cmd.add_option("--floor-ratio", f.floor_ratio, "How far below the smallest error the floor should lie")
+      ->check(CLI::Range(1.0, 1e6))
+      ->capture_default_str();
+  cmd.add_option("--reference-time-limit", f.reference_time_limit,
+                 "Rendering time one reference's levels may take under the stopping rule, s")
+      ->check(CLI::Range(0.0, 1e7))
+      ->capture_default_str();
 }
 
 FrontsRequest request_from_flags(const FrontsFlags& f) {
@@ -196,6 +234,11 @@ FrontsRequest request_from_flags(const FrontsFlags& f) {
     throw SweepError("--epsilon: must be > 0, got " + std::to_string(f.epsilon));
   r.settings.epsilon = f.epsilon;
   r.settings.seeds = f.seeds;
+  try {
+    r.settings.estimator = parse_estimator(f.estimator);
+  } catch (const std::invalid_argument& e) {
+    throw SweepError(std::string("--estimator: ") + e.what());
+  }
   std::tie(r.width, r.height) = parse_resolution(f.resolution, "--resolution");
   if (f.validate_resolution == "0") {
     r.validate_width = r.validate_height = 0;
@@ -225,6 +268,12 @@ ReferenceOptions reference_options_from_flags(const FrontsFlags& f) {
   o.epsilon = f.epsilon;
   if (f.validate_resolution != "0")
     std::tie(o.validate_width, o.validate_height) = parse_resolution(f.validate_resolution, "--validate-resolution");
+  o.time_limit_s = f.reference_time_limit;
+  o.floor_target = f.floor_target;
+  if (!f.floor_target_from.empty()) {
+    if (f.floor_target > 0.0) throw SweepError("--floor-target-from: give it or --floor-target, not both");
+    o.floor_target = floor_target_from(f.floor_target_from, f.metric) / f.floor_ratio;
+  }
   return o;
 }
 

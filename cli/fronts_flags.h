@@ -34,6 +34,11 @@ struct FrontsFlags {
   double epsilon = tracer::kRelMseEpsilon;
   int seeds = 4, threads = 1, repetitions = 3, warmup = 1, reference_threads = 0;
   bool no_cache = false, refresh = false;
+  std::string estimator = "plain";       ///< --estimator: how a progressive reference combines stages.
+  double floor_target = 0.0;             ///< --floor-target: stopping rule's floor (0: none).
+  std::string floor_target_from;         ///< --floor-target-from: results file whose fronts set it.
+  double floor_ratio = 10.0;             ///< --floor-ratio: target = smallest error there / this.
+  double reference_time_limit = 3600.0;  ///< --reference-time-limit, s.
 };
 
 /// Registers the fronts flags on `cmd` (SCENE positional arguments included).
@@ -42,7 +47,9 @@ void add_fronts_flags(CLI::App& cmd, FrontsFlags& flags);
 /// The request the flags describe; throws SweepError naming the flag.
 FrontsRequest request_from_flags(const FrontsFlags& flags);
 
-/// Where and how references are made and cached.
+/// Where and how references are made and cached, with their stopping rule (--floor-target, or
+/// --floor-target-from FILE: the smallest error on that file's fronts over --floor-ratio).
+/// Throws SweepError naming the flag.
 ReferenceOptions reference_options_from_flags(const FrontsFlags& flags);
 
 /// Parses a --values list: "v1,v2,..." (numbers, true/false, or words), or "lo:hi:n", n values

@@ -43,16 +43,32 @@ struct Rendered {
   tracer::Image image;
   tracer::RayCounts rays;
   double ms = 0.0;
+  std::vector<std::pair<int, tracer::Image>> checkpoints;  ///< Earlier stages' images.
 };
 
 Rendered render(const tracer::Scene& scene, const accel::AnyAccel& built, const std::string& integrator,
-                const json& params, int width, int height, int threads) {
+                const json& params, int width, int height, int threads, std::vector<int> checkpoints = {}) {
   tracer::RenderOptions o;
   o.threads = threads;
   o.width = width;
   o.height = height;
+  o.checkpoints = std::move(checkpoints);
   tracer::RenderResult r = tracer::render(scene, built, o, integrators::named(integrator, "reference"), params);
-  return {std::move(r.image), r.rays, r.render_ms};
+  return {std::move(r.image), r.rays, r.render_ms, std::move(r.checkpoints)};
+}
+
+/// A progressive spec's stage count (its stage knob, the integrator's default when not given).
+long long stages_of(const ReferenceSpec& spec) {
+  return integrators::named(spec.integrator, "reference").params(spec.params).at(spec.stage_knob).get<long long>();
+}
+
+/// The image of `r` after `stages` stages (its final image at its own count).
+const tracer::Image& stage_image(const Rendered& r, long long stages, long long total, const std::string& what) {
+  if (stages == total) return r.image;
+  for (const auto& [at, image] : r.checkpoints)
+    if (at == stages) return image;
+  throw std::runtime_error("reference: the " + what + " render returned no image after " + std::to_string(stages) +
+                           " stages");
 }
 
 json with_seed(json params, std::uint64_t seed) {
@@ -107,6 +123,8 @@ std::optional<AccuracyReference> read_cached(const fs::path& dir, const std::str
     const json& f = info.at("floor");
     r.floor.noise_rmse = f.at("noise_rmse").get<double>();
     r.floor.truncation_rmse = f.at("truncation_rmse").get<double>();
+    r.floor.bias_rmse = f.value("bias_rmse", 0.0);
+    r.floor.bias_rmse_estimate = f.value("bias_rmse_estimate", 0.0);
     r.floor.rmse = f.at("rmse").get<double>();
     r.floor.rel_mse = f.at("rel_mse").get<double>();
     r.floor.epsilon = f.at("epsilon").get<double>();
@@ -124,12 +142,19 @@ json to_json(const ReferenceSpec& s) {
   json j = {{"integrator", s.integrator}, {"params", s.params}, {"stochastic", s.stochastic},
             {"width", s.width},           {"height", s.height}};
   if (!s.check.empty()) j["check"] = s.check;
+  if (!s.stage_knob.empty()) {
+    j["stage_knob"] = s.stage_knob;
+    j["bias_order"] = s.bias_order;
+    j["estimator"] = estimator_name(s.estimator);
+  }
   return j;
 }
 
 json to_json(const ReferenceFloor& f) {
-  return {{"noise_rmse", f.noise_rmse}, {"truncation_rmse", f.truncation_rmse}, {"rmse", f.rmse},
-          {"rel_mse", f.rel_mse},       {"epsilon", f.epsilon}};
+  return {{"noise_rmse", f.noise_rmse}, {"truncation_rmse", f.truncation_rmse},
+          {"bias_rmse", f.bias_rmse},   {"bias_rmse_estimate", f.bias_rmse_estimate},
+          {"rmse", f.rmse},             {"rel_mse", f.rel_mse},
+          {"epsilon", f.epsilon}};
 }
 
 std::string reference_key(const tracer::Scene& scene, const ReferenceSpec& spec, double epsilon) {
@@ -146,8 +171,8 @@ std::string default_reference_cache() {
   return ".accelbench-cache/references";
 }
 
-AccuracyReference obtain_reference(const tracer::Scene& scene, const accel::AnyAccel& built,
-                                   const ReferenceSpec& spec, const ReferenceOptions& options) {
+static AccuracyReference obtain_level(const tracer::Scene& scene, const accel::AnyAccel& built, const ReferenceSpec& spec,
+                               const ReferenceOptions& options) {
   const std::string key = reference_key(scene, spec, options.epsilon);
   const fs::path dir = options.cache_dir;
   if (!options.cache_dir.empty() && !options.refresh)
@@ -165,11 +190,42 @@ AccuracyReference obtain_reference(const tracer::Scene& scene, const accel::AnyA
   r.spec = spec;
   json renders = json::array();
   const double eps = options.epsilon;
+  // A progressive reference's halves also keep their images one and two checkpoints earlier
+  // (free: the same renders stopped early), from which its bias is estimated.
+  const bool progressive = !spec.stage_knob.empty();
+  const long long n = progressive ? stages_of(spec) : 0;
+  const int depth = progressive ? estimator_depth(spec.estimator) : 0;
+  long long divisor = 1;
+  for (int d = 0; d < depth; ++d) divisor *= kStageRatio;
+  if (progressive && n % divisor != 0)
+    throw std::runtime_error("reference: a " + std::string(estimator_name(spec.estimator)) + " reference needs " +
+                             spec.stage_knob + " divisible by " + std::to_string(divisor) + ", got " +
+                             std::to_string(n));
+  const std::vector<int> checkpoints =
+      progressive ? std::vector<int>{int(n / kStageRatio), int(n / divisor)} : std::vector<int>{};
   Rendered a = render(scene, built, spec.integrator, spec.stochastic ? with_seed(spec.params, kReferenceSeedA) : spec.params,
-                      spec.width, spec.height, options.threads);
+                      spec.width, spec.height, options.threads, checkpoints);
   renders.push_back({{"what", spec.stochastic ? "half A" : "reference"}, {"render_ms", a.ms}, {"rays", a.rays}});
-  double noise_rel = 0.0;
-  if (spec.stochastic) {
+  double noise_rel = 0.0, bias_rel = 0.0;
+  if (progressive) {
+    Rendered b = render(scene, built, spec.integrator, with_seed(spec.params, kReferenceSeedB), spec.width,
+                        spec.height, options.threads, checkpoints);
+    renders.push_back({{"what", "half B"}, {"render_ms", b.ms}, {"rays", b.rays}});
+    HalfStages stages[2];
+    const Rendered* halves[2] = {&a, &b};
+    for (int h = 0; h < 2; ++h) {
+      stages[h].n = halves[h]->image;
+      stages[h].n8 = stage_image(*halves[h], n / kStageRatio, n, "reference");
+      if (depth > 1) stages[h].n64 = stage_image(*halves[h], n / divisor, n, "reference");
+    }
+    const ProgressiveReference p = progressive_reference(stages[0], stages[1], spec.bias_order, spec.estimator, eps);
+    r.image = p.image;
+    r.floor.noise_rmse = std::sqrt(p.noise_mse);
+    r.floor.bias_rmse = std::sqrt(p.bias_mse.upper);
+    r.floor.bias_rmse_estimate = std::sqrt(p.bias_mse.value);
+    noise_rel = p.noise_rel;
+    bias_rel = p.bias_rel.upper;
+  } else if (spec.stochastic) {
     Rendered b = render(scene, built, spec.integrator, with_seed(spec.params, kReferenceSeedB), spec.width,
                         spec.height, options.threads);
     renders.push_back({{"what", "half B"}, {"render_ms", b.ms}, {"rays", b.rays}});
@@ -193,8 +249,9 @@ AccuracyReference obtain_reference(const tracer::Scene& scene, const accel::AnyA
     r.floor.truncation_rmse = d.rmse;
     trunc_rel = d.rel_mse;
   }
-  r.floor.rmse = std::hypot(r.floor.noise_rmse, r.floor.truncation_rmse);
-  r.floor.rel_mse = noise_rel + trunc_rel;
+  r.floor.rmse = std::sqrt(r.floor.noise_rmse * r.floor.noise_rmse + r.floor.truncation_rmse * r.floor.truncation_rmse +
+                           r.floor.bias_rmse * r.floor.bias_rmse);
+  r.floor.rel_mse = noise_rel + trunc_rel + bias_rel;
   r.floor.epsilon = eps;
   r.render_s = std::chrono::duration<double>(Clock::now() - t0).count();
 
@@ -223,6 +280,63 @@ AccuracyReference obtain_reference(const tracer::Scene& scene, const accel::AnyA
     });
   }
   return r;
+}
+
+AccuracyReference obtain_reference(const tracer::Scene& scene, const accel::AnyAccel& built,
+                                   const ReferenceSpec& spec, const ReferenceOptions& options) {
+  if (spec.stage_knob.empty() || !(options.floor_target > 0.0)) return obtain_level(scene, built, spec, options);
+  // The stopping rule: level after level, each with kStageRatio times the stages of the last,
+  // until the floor reaches the target or the next level (about kStageRatio times this one's
+  // rendering) would pass the time limit. Each level is cached on its own, so a later run with a
+  // lower target continues where this one stopped.
+  const tracer::Integrator& integrator = integrators::named(spec.integrator, "reference");
+  // Whether the stage knob accepts `stages` (its table's range).
+  const auto accepts = [&](const json& params, long long stages) {
+    json p = params;
+    p[spec.stage_knob] = stages;
+    try {
+      integrator.params(p);
+      return true;
+    } catch (const std::exception&) {
+      return false;
+    }
+  };
+  ReferenceSpec level = spec;
+  json levels = json::array();
+  double spent_s = 0.0, rendered_now_s = 0.0;
+  for (;;) {
+    AccuracyReference r = obtain_level(scene, built, level, options);
+    const double made_s = r.from_cache ? r.info.value("render_s", 0.0) : r.render_s;
+    spent_s += made_s;
+    rendered_now_s += r.render_s;
+    const long long stages = stages_of(level);
+    const double floor = options.floor_metric == FrontMetric::Rmse ? r.floor.rmse : r.floor.rel_mse;
+    levels.push_back({{"stages", stages},
+                      {"key", r.key},
+                      {"floor", to_json(r.floor)},
+                      {"render_s", made_s},
+                      {"from_cache", r.from_cache}});
+    const char* stopped_by = nullptr;
+    if (floor <= options.floor_target) stopped_by = "floor";
+    else if (spent_s + kStageRatio * made_s > options.time_limit_s) stopped_by = "time_limit";
+    else if (!accepts(level.params, stages * kStageRatio)) stopped_by = "stage_limit";
+    if (options.progress)
+      std::fprintf(stderr, "fronts: reference level %s=%lld: floor %s %.4g (target %.4g)%s%s\n",
+                   spec.stage_knob.c_str(), stages, metric_name(options.floor_metric), floor, options.floor_target,
+                   stopped_by ? ", stopped by " : "", stopped_by ? stopped_by : "");
+    if (stopped_by) {
+      r.stopping = {{"target", options.floor_target},
+                    {"metric", metric_name(options.floor_metric)},
+                    {"time_limit_s", options.time_limit_s},
+                    {"stopped_by", stopped_by},
+                    {"render_s", spent_s},
+                    {"levels", levels}};
+      r.info["stopping"] = r.stopping;
+      r.render_s = rendered_now_s;
+      return r;
+    }
+    level.params[spec.stage_knob] = stages * kStageRatio;
+  }
 }
 
 }  // namespace harness

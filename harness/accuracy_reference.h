@@ -3,6 +3,9 @@
 // an independent, converged render, with an estimate of its own error (the error floor), and
 // cached on disk keyed by everything that decides its pixels (docs/accuracy.md).
 
+#include "harness/front_metric.h"
+#include "harness/reference_floor.h"
+
 #include "accel/accel.h"
 #include "tracer/image.h"
 #include "tracer/image_error.h"
@@ -18,7 +21,7 @@ namespace harness {
 
 /// Version of the reference recipe and cache format; raise it when either changes so that older
 /// cached references are not used.
-inline constexpr int kReferenceVersion = 1;
+inline constexpr int kReferenceVersion = 2;
 
 /// The seeds of a stochastic reference's two independent halves.
 inline constexpr std::uint64_t kReferenceSeedA = 0x5eed0001;
@@ -30,21 +33,29 @@ struct ReferenceSpec {
   nlohmann::json params = nlohmann::json::object();  ///< Its knobs (the halves add "seed").
   bool stochastic = false;  ///< Two halves with independent seeds, the reference their mean.
   /// Knobs of the weaker check render (empty: none) whose difference from the reference
-  /// estimates the reference's truncation error (Whitted's depth 48 against 64) or bias (ppm's
-  /// passes / 8); rendered with half A's seed.
+  /// estimates the reference's truncation error (Whitted's depth 48 against 64).
   nlohmann::json check = nlohmann::json::object();
+  /// The integrator's stage knob when it is progressive (ppm: "passes"; tracer::Integrator::
+  /// stage_knob), else empty: then the halves' stages estimate its bias (reference_floor.h).
+  std::string stage_knob;
+  double bias_order = 0.0;  ///< Order p of a progressive reference's bias (stages^-p).
+  ReferenceEstimator estimator = ReferenceEstimator::Plain;  ///< How its stages combine.
   int width = 0;   ///< Image width, pixels (the front's resolution).
   int height = 0;  ///< Image height, pixels.
 };
 
 nlohmann::json to_json(const ReferenceSpec& s);
 
-/// The reference's own error, estimated when it is made. floor = sqrt(noise^2 + truncation^2).
+/// The reference's own error, estimated when it is made.
 struct ReferenceFloor {
   double noise_rmse = 0.0;       ///< RMSE of the halves' mean from its expectation: RMSE(A, B)/2.
   double truncation_rmse = 0.0;  ///< RMSE between the reference and the check render: what
-                                 ///< the halves cannot see (truncation, or ppm's remaining bias).
-  double rmse = 0.0;             ///< The floor in RMSE, radiance units.
+                                 ///< the halves cannot see (Whitted's truncation).
+  /// A progressive reference's bias, RMSE: the 95% upper bound of its estimate from the stages
+  /// (reference_floor.h), which the floor uses; 0 otherwise.
+  double bias_rmse = 0.0;
+  double bias_rmse_estimate = 0.0;  ///< The estimate itself (<= bias_rmse).
+  double rmse = 0.0;             ///< The floor in RMSE: sqrt(noise^2 + truncation^2 + bias^2).
   double rel_mse = 0.0;          ///< The floor in relative MSE (same epsilon as the fronts).
   double epsilon = tracer::kRelMseEpsilon;  ///< That epsilon.
 };
@@ -60,6 +71,9 @@ struct AccuracyReference {
   nlohmann::json info;          ///< Spec, floor, render time, ray counts, when and by what made.
   bool from_cache = false;      ///< Read from the cache rather than rendered now.
   double render_s = 0.0;        ///< Wall time spent rendering it now, s (0 from the cache).
+  /// Under a stopping rule (ReferenceOptions::floor_target): the target, the levels tried and
+  /// what stopped them ("floor", "time_limit" or "stage_limit"); null otherwise.
+  nlohmann::json stopping;
 };
 
 /// How to obtain references.
@@ -73,6 +87,12 @@ struct ReferenceOptions {
   int validate_width = 0;
   int validate_height = 0;  ///< Height of that check, pixels.
   bool progress = true;     ///< Lines on stderr while rendering.
+  /// The stopping rule of progressive references: > 0 renders level after level, each with
+  /// kStageRatio times the stages of the last, until the floor (in floor_metric) is at most this,
+  /// or the next level would take the rendering past time_limit_s. 0: the recipe's stages only.
+  double floor_target = 0.0;
+  FrontMetric floor_metric = FrontMetric::Rmse;  ///< Metric of floor_target.
+  double time_limit_s = 3600.0;  ///< Rendering time of all of one reference's levels, s.
 };
 
 /// The cache key of a reference of `scene`: FNV-1a 64 over the canonical JSON of the recipe
@@ -87,7 +107,8 @@ std::string default_reference_cache();
 
 /// The reference of `scene` (for which `built` was built over its primitive bounds) as `spec`
 /// says: from the cache when it holds it (and options.refresh is off), else rendered, checked
-/// and stored. Throws std::runtime_error with one line when the structure disagrees with naive,
+/// and stored. A progressive spec under a stopping rule (options.floor_target) goes through its
+/// levels, each cached on its own, and returns the last. Throws std::runtime_error with one line when the structure disagrees with naive,
 /// the render fails, or the cache cannot be written.
 AccuracyReference obtain_reference(const tracer::Scene& scene, const accel::AnyAccel& built,
                            const ReferenceSpec& spec, const ReferenceOptions& options);

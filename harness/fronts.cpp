@@ -83,6 +83,7 @@ json to_json(const FrontsSettings& s) {
           {"reference", s.reference},
           {"metric", metric_name(s.metric)},
           {"epsilon", s.epsilon},
+          {"estimator", estimator_name(s.estimator)},
           {"seeds", s.seeds}};
 }
 
@@ -93,7 +94,7 @@ FrontsSettings fronts_settings_from_json(const json& j) {
     for (const auto& [key, value] : j.items()) {
       (void)value;
       if (key != "groups" && key != "fixed" && key != "reference" && key != "metric" && key != "epsilon" &&
-          key != "seeds")
+          key != "estimator" && key != "seeds")
         throw SweepError("/" + key + ": unknown key");
     }
     s.groups = j.at("groups").get<std::vector<std::vector<std::string>>>();
@@ -107,6 +108,14 @@ FrontsSettings fronts_settings_from_json(const json& j) {
     else throw SweepError("/metric: must be rmse or rel_mse, got " + j["metric"].dump());
     s.epsilon = j.at("epsilon").get<double>();
     if (!(s.epsilon > 0.0) || !std::isfinite(s.epsilon)) throw SweepError("/epsilon: must be > 0");
+    if (j.contains("estimator")) {  // absent in files of earlier versions: plain
+      if (!j["estimator"].is_string()) throw SweepError("/estimator: must be plain or richardson");
+      try {
+        s.estimator = parse_estimator(j["estimator"].get<std::string>());
+      } catch (const std::invalid_argument& e) {
+        throw SweepError(std::string("/estimator: ") + e.what());
+      }
+    }
     s.seeds = j.at("seeds").get<int>();
     if (s.seeds < 1 || s.seeds > 1024) throw SweepError("/seeds: must be in [1, 1024]");
   } catch (const SweepError& e) {
@@ -120,7 +129,8 @@ FrontsSettings fronts_settings_from_json(const json& j) {
 std::string group_name(const std::vector<std::string>& knobs) { return join(knobs, "*"); }
 
 ReferenceSpec group_reference(const std::string& integrator, const std::vector<std::string>& group,
-                              const json& fixed, int width, int height, const json& overrides) {
+                              const json& fixed, int width, int height, const json& overrides,
+                              ReferenceEstimator estimator) {
   ReferenceSpec spec;
   spec.width = width;
   spec.height = height;
@@ -162,9 +172,13 @@ ReferenceSpec group_reference(const std::string& integrator, const std::vector<s
   if (spec.stochastic && !integrators::named(chosen, "reference").params(json::object()).contains(knobs::kSeedKnob))
     throw SweepError("reference integrator " + chosen + " has no seed knob for independent halves");
   // A reference whose error is not all noise (progressive photon mapping's shrinking radius)
-  // names the weaker render that estimates its bias.
-  if (const auto bias_check = integrators::named(chosen, "reference").bias_check)
-    spec.check = bias_check(spec.params);
+  // estimates its bias from its own earlier stages.
+  const tracer::Integrator& reference_integrator = integrators::named(chosen, "reference");
+  if (reference_integrator.stage_knob) {
+    spec.stage_knob = reference_integrator.stage_knob;
+    spec.bias_order = reference_integrator.bias_order(spec.params);
+    spec.estimator = estimator;
+  }
   return spec;
 }
 
@@ -215,7 +229,8 @@ SweepDefinition fronts_definition(const FrontsRequest& r) {
     }
     for (const auto& [k, v] : r.settings.fixed.items()) axes[k] = {v};
     d.integrator_knobs.push_back(std::move(axes));
-    group_reference(r.integrator, group, r.settings.fixed, r.width, r.height, r.settings.reference);  // throws on a bad mix
+    group_reference(r.integrator, group, r.settings.fixed, r.width, r.height, r.settings.reference,
+                    r.settings.estimator);  // throws on a bad mix
   }
   for (const auto& [knob, values] : r.values) {
     (void)values;
@@ -245,22 +260,24 @@ FrontsInspector::FrontsInspector(const SweepDefinition& definition, ReferenceOpt
       width_(definition.width),
       height_(definition.height) {
   options_.epsilon = settings_.epsilon;
+  options_.floor_metric = settings_.metric;
   has_seed_ = integrators::named(integrator_, "integrator").params(json::object()).contains(knobs::kSeedKnob);
 }
 
 const AccuracyReference& FrontsInspector::reference(const tracer::Scene& scene, const accel::AnyAccel& built,
                                                     const std::vector<std::string>& group) {
   const auto t0 = Clock::now();
-  ReferenceSpec spec = group_reference(integrator_, group, settings_.fixed, width_, height_, settings_.reference);
+  ReferenceSpec spec =
+      group_reference(integrator_, group, settings_.fixed, width_, height_, settings_.reference, settings_.estimator);
   const std::string key = reference_key(scene, spec, settings_.epsilon);
   auto it = references_.find(key);
   if (it == references_.end()) {
     AccuracyReference r = obtain_reference(scene, built, spec, options_);
     (r.from_cache ? cached_ : made_)++;
     if (options_.progress)
-      std::fprintf(stderr, "fronts: reference %s %s (%s): floor RMSE %.3g (noise %.3g, truncation %.3g)\n",
-                   key.c_str(), r.from_cache ? "from the cache" : "rendered", group_name(group).c_str(),
-                   r.floor.rmse, r.floor.noise_rmse, r.floor.truncation_rmse);
+      std::fprintf(stderr, "fronts: reference %s %s (%s): floor RMSE %.3g (noise %.3g, truncation %.3g, bias %.3g)\n",
+                   r.key.c_str(), r.from_cache ? "from the cache" : "rendered", group_name(group).c_str(),
+                   r.floor.rmse, r.floor.noise_rmse, r.floor.truncation_rmse, r.floor.bias_rmse);
     it = references_.emplace(key, std::move(r)).first;
   }
   reference_s_ += seconds_since(t0);
@@ -291,6 +308,7 @@ void FrontsInspector::operator()(const tracer::Scene& scene, const accel::AnyAcc
                           {"integrator", ref.spec.integrator},
                           {"params", ref.spec.params},
                           {"floor", to_json(ref.floor)}};
+  if (!ref.stopping.is_null()) m.extra["reference"]["stopping"] = ref.stopping;
   // The split into bias and variance over seeds, for knobs whose reference is itself stochastic
   // (spp, photon counts): a deterministic reference (depth 64) is rendered with the row's own
   // seed, so comparing other seeds' images with it would count their sampling noise as error.

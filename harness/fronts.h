@@ -31,6 +31,9 @@ struct FrontsSettings {
   nlohmann::json reference = nlohmann::json::object();
   FrontMetric metric = FrontMetric::Rmse;  ///< Metric of the front and of tune.
   double epsilon = tracer::kRelMseEpsilon;  ///< Epsilon of the relative MSE.
+  /// How a progressive reference (ppm) combines its stages: plain, or Richardson extrapolation
+  /// (harness/reference_floor.h). Part of every such reference's cache key.
+  ReferenceEstimator estimator = ReferenceEstimator::Plain;
   /// Renders per configuration with independent seeds for the bias/variance split (the timed
   /// image is the first), for groups whose reference is stochastic; 1 = no split.
   int seeds = 4;
@@ -47,10 +50,12 @@ std::string group_name(const std::vector<std::string>& knobs);
 /// The reference recipe of a knob group of `integrator` (accuracy_knobs.h), with the fixed knobs
 /// and then `overrides` (knobs of the reference integrator) on top, at width x height. Throws
 /// SweepError when a knob has no row, the knobs' references disagree, or an override names a knob
-/// the reference integrator does not have.
+/// the reference integrator does not have. A progressive reference integrator (ppm) estimates
+/// its bias from its own stages with `estimator`.
 ReferenceSpec group_reference(const std::string& integrator, const std::vector<std::string>& group,
                               const nlohmann::json& fixed, int width, int height,
-                              const nlohmann::json& overrides = nlohmann::json::object());
+                              const nlohmann::json& overrides = nlohmann::json::object(),
+                              ReferenceEstimator estimator = ReferenceEstimator::Plain);
 
 /// A fronts run as the command line asks for it.
 struct FrontsRequest {

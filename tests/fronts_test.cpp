@@ -113,16 +113,21 @@ TEST(FrontsDefinition, ReferencesDependOnlyOnTheStudiedKnobs) {
   const harness::ReferenceSpec spp = harness::group_reference("whitted", {"spp"}, {{"max_depth", 5}}, 32, 24);
   EXPECT_EQ(spp.params, json({{"max_depth", 5}, {"spp", 1024}}));  // at the front's own depth
   EXPECT_TRUE(spp.stochastic);
-  // The photon knobs' ppm reference checks its bias against 1/8 of its passes, also when
-  // --reference-set changes them.
+  // The photon knobs' ppm reference is progressive: it estimates its bias from its own stages
+  // (passes), of order 1 - alpha, with the estimator asked for, and renders no separate check.
   const harness::ReferenceSpec k = harness::group_reference("photon", {"k"}, json::object(), 32, 24);
   EXPECT_EQ(k.integrator, "ppm");
   EXPECT_TRUE(k.stochastic);
-  EXPECT_EQ(k.check, json({{"passes", 32}}));
-  EXPECT_EQ(harness::group_reference("photon", {"k"}, json::object(), 32, 24, {{"passes", 2048}}).check,
-            json({{"passes", 256}}));
-  EXPECT_EQ(harness::group_reference("photon", {"k"}, json::object(), 32, 24, {{"passes", 4}}).check,
-            json({{"passes", 1}}));
+  EXPECT_TRUE(k.check.empty());
+  EXPECT_EQ(k.stage_knob, "passes");
+  EXPECT_NEAR(k.bias_order, 1.0 / 3.0, 1e-6);
+  EXPECT_EQ(k.estimator, harness::ReferenceEstimator::Plain);
+  const harness::ReferenceSpec rich = harness::group_reference("photon", {"k"}, json::object(), 32, 24,
+                                                               {{"alpha", 0.5}}, harness::ReferenceEstimator::Richardson);
+  EXPECT_EQ(rich.estimator, harness::ReferenceEstimator::Richardson);
+  EXPECT_NEAR(rich.bias_order, 0.5, 1e-6);
+  EXPECT_NE(harness::to_json(rich), harness::to_json(k));  // so the cache keys differ
+  EXPECT_TRUE(depth.stage_knob.empty());
 }
 
 TEST(FrontsDefinition, BadInputIsOneLineNamingWhatIsWrong) {
@@ -486,6 +491,71 @@ TEST(AccuracyReference, HalvesGiveTheNoiseAndTheCacheKeyFollowsTheScene) {
   EXPECT_NE(harness::reference_key(scene, spec), key);
 }
 
+// The stopping rule of progressive references: level after level with 8x the passes until the
+// floor reaches the target, or the next level would pass the time limit; each level cached.
+TEST(AccuracyReference, ProgressiveLevelsStopAtTheFloorTargetOrTheTimeLimit) {
+  scenes_gen::GenOptions g;
+  const tracer::Scene scene = scenes_gen::generate("glass_caustic", g);
+  const accel::AnyAccel built = accel::make_accel("bvh", json::object(), scene.geometry.primitive_bounds());
+  harness::ReferenceSpec spec =
+      harness::group_reference("photon", {"k"}, json::object(), 24, 18, {{"passes", 8}, {"photons_per_pass", 2000}});
+  const fs::path dir = fs::temp_directory_path() / ("accelbench_levels_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  harness::ReferenceOptions ro;
+  ro.progress = false;
+  ro.cache_dir = dir.string();
+  ro.threads = 2;
+
+  // No target: the recipe's passes only. The floor holds the noise and the stages' bias bound.
+  const harness::AccuracyReference base = harness::obtain_reference(scene, built, spec, ro);
+  EXPECT_TRUE(base.stopping.is_null());
+  EXPECT_GT(base.floor.noise_rmse, 0.0);
+  EXPECT_GE(base.floor.bias_rmse, base.floor.bias_rmse_estimate);
+  EXPECT_EQ(base.floor.truncation_rmse, 0.0);
+  EXPECT_NEAR(base.floor.rmse * base.floor.rmse,
+              base.floor.noise_rmse * base.floor.noise_rmse + base.floor.bias_rmse * base.floor.bias_rmse, 1e-12);
+
+  // A target the first level meets: it stops there, read from the cache.
+  ro.floor_target = base.floor.rmse * 1.01;
+  const harness::AccuracyReference met = harness::obtain_reference(scene, built, spec, ro);
+  EXPECT_EQ(met.stopping["stopped_by"], "floor");
+  EXPECT_EQ(met.stopping["levels"].size(), 1u);
+  EXPECT_TRUE(met.from_cache);
+  EXPECT_EQ(met.image, base.image);
+
+  // A lower target: 8x and 64x the passes, until the floor meets it.
+  ro.floor_target = base.floor.rmse * 0.6;
+  const harness::AccuracyReference deeper = harness::obtain_reference(scene, built, spec, ro);
+  EXPECT_EQ(deeper.stopping["stopped_by"], "floor") << deeper.stopping.dump();
+  ASSERT_GE(deeper.stopping["levels"].size(), 2u);
+  EXPECT_EQ(deeper.stopping["levels"][1]["stages"], 64);
+  EXPECT_LE(deeper.floor.rmse, ro.floor_target);
+  EXPECT_EQ(deeper.spec.params["passes"], deeper.stopping["levels"].back()["stages"]);
+  EXPECT_EQ(deeper.stopping["levels"][0]["from_cache"], true);
+
+  // No time for another level: it stops at the first and says so.
+  ro.floor_target = base.floor.rmse * 1e-6;
+  ro.time_limit_s = 0.0;
+  const harness::AccuracyReference limited = harness::obtain_reference(scene, built, spec, ro);
+  EXPECT_EQ(limited.stopping["stopped_by"], "time_limit");
+  EXPECT_EQ(limited.stopping["levels"].size(), 1u);
+
+  // Richardson needs two checkpoints of 8x below the passes.
+  spec.estimator = harness::ReferenceEstimator::Richardson;
+  ro.floor_target = 0.0;
+  try {
+    harness::obtain_reference(scene, built, spec, ro);
+    ADD_FAILURE() << "8 passes cannot make a richardson reference";
+  } catch (const std::runtime_error& e) {
+    EXPECT_STREQ(e.what(), "reference: a richardson reference needs passes divisible by 64, got 8");
+  }
+  spec.params["passes"] = 64;
+  const harness::AccuracyReference rich = harness::obtain_reference(scene, built, spec, ro);
+  EXPECT_GT(rich.floor.noise_rmse, 0.0);
+  EXPECT_NE(rich.key, base.key);
+  fs::remove_all(dir);
+}
+
 TEST(FrontsCli, BadInputGivesOneLine) {
   struct Case {
     std::string args, message;
@@ -496,6 +566,12 @@ TEST(FrontsCli, BadInputGivesOneLine) {
       {"fronts five --knobs spp --values spp=0:4:3 --no-cache", "accelbench: --values spp: a log-spaced range"},
       {"fronts five --knobs spp --metric l2 --no-cache", "accelbench: --metric: must be rmse or rel_mse"},
       {"tune five --max-error 0.01", "accelbench: --max-error/--max-time: give --fronts FILE or --knobs LIST"},
+      {"fronts five --knobs spp --estimator linear --no-cache",
+       "accelbench: --estimator: estimator must be plain or richardson, got 'linear'"},
+      {"fronts five --knobs spp --floor-target-from /nonexistent/f.json --no-cache",
+       "accelbench: --floor-target-from /nonexistent/f.json: "},
+      {"fronts five --knobs spp --floor-target-from " ACCELBENCH_SOURCE_DIR "/results/fronts-five.json --metric rel_mse --no-cache",
+       "accelbench: --floor-target-from " ACCELBENCH_SOURCE_DIR "/results/fronts-five.json: its fronts are in rmse, not --metric rel_mse"},
       // 100,000 nested brackets: a string to the integrator, never parsed as JSON.
       {"fronts five --knobs spp --values spp=" + std::string(100000, '[') + " --no-cache",
        "accelbench: --values: whitted: knob 'spp' must be an integer"},

@@ -19,17 +19,20 @@
 #include <cstdio>
 #include <numbers>
 #include <string>
+#include <vector>
 
 namespace {
 
 using nlohmann::json;
 
-tracer::RenderResult render(const tracer::Scene& scene, const json& knobs, int threads, int w, int h) {
+tracer::RenderResult render(const tracer::Scene& scene, const json& knobs, int threads, int w, int h,
+                            std::vector<int> checkpoints = {}) {
   const accel::AnyAccel a = accel::make_accel("bvh", json::object(), scene.geometry.primitive_bounds());
   tracer::RenderOptions o;
   o.threads = threads;
   o.width = w;
   o.height = h;
+  o.checkpoints = std::move(checkpoints);
   return tracer::render(scene, a, o, photon::ppm_integrator(), knobs);
 }
 
@@ -124,6 +127,27 @@ TEST(PpmDeterminism, BitIdenticalAtAnyThreadCount) {
   // Another seed gives another image (the seed reaches every pass).
   const tracer::RenderResult other = render(scene, {{"passes", 3}, {"photons_per_pass", 5000}, {"seed", 7}}, 2, 40, 30);
   EXPECT_NE(one.image.pixels(), other.image.pixels());
+}
+
+// The earlier stages a reference estimates its bias from (harness/reference_floor.h) are the
+// render stopped there: bit for bit, at any thread count, and they cost no second render.
+TEST(PpmCheckpoints, AreTheRendersStoppedThere) {
+  const tracer::Scene scene = scenes_gen::generate("glass_caustic", {});
+  const json knobs = {{"passes", 8}, {"photons_per_pass", 3000}};
+  const tracer::RenderResult full = render(scene, knobs, 2, 32, 24, {4, 1, 8, 0, 4, 12});
+  // 8, 0 and 12 are not below the render's passes; 4 is asked for twice.
+  ASSERT_EQ(full.checkpoints.size(), 2u);
+  EXPECT_EQ(full.checkpoints[0].first, 1);
+  EXPECT_EQ(full.checkpoints[1].first, 4);
+  for (const auto& [passes, image] : full.checkpoints) {
+    json stopped = knobs;
+    stopped["passes"] = passes;
+    EXPECT_EQ(image.pixels(), render(scene, stopped, 1, 32, 24).image.pixels()) << passes << " passes";
+  }
+  EXPECT_EQ(full.image.pixels(), render(scene, knobs, 1, 32, 24).image.pixels());
+  EXPECT_NE(full.checkpoints[1].second.pixels(), full.image.pixels());
+  EXPECT_NEAR(photon::ppm_integrator().bias_order(json::object()), 1.0 / 3.0, 1e-6);
+  EXPECT_STREQ(photon::ppm_integrator().stage_knob, "passes");
 }
 
 TEST(PpmKnobs, BadKnobsAreOneLineNamingTheKnob) {

@@ -20,6 +20,8 @@
 
 #include <string>
 #include <string_view>
+#include <utility>
+#include <vector>
 
 namespace tracer {
 
@@ -41,6 +43,10 @@ struct RenderOptions {
   accel::BuildLimits limits;
   /// The ray/triangle routine; each integrator sets it from its `triangle` knob.
   TriangleTest triangle_test = TriangleTest::Watertight;
+  /// Stages (Integrator::stage_knob: ppm's passes) after which a progressive integrator also
+  /// keeps its image, in RenderResult::checkpoints; stages not below the render's own count are
+  /// ignored. Each is bit-identical to a render stopped there.
+  std::vector<int> checkpoints;
 };
 
 struct RenderResult {
@@ -52,6 +58,8 @@ struct RenderResult {
   double render_ms = 0;
   /// The integrator's own statistics (photon maps, phase times, ...); empty for Whitted and SPD.
   nlohmann::json stats = nlohmann::json::object();
+  /// A progressive integrator's images at RenderOptions::checkpoints, by stage, fewest first.
+  std::vector<std::pair<int, Image>> checkpoints;
 };
 
 /// One integrator: a row of the integrator table (integrators/integrators.h).
@@ -74,10 +82,14 @@ struct Integrator {
   /// The knobs at which this integrator renders the reference for another integrator's fronts
   /// (a JSON object; "" when it makes none): see knobs::Front::reference_integrator.
   const char* reference_for_others = "";
-  /// For a reference whose error is not all noise: the knobs (those that differ) of a weaker
-  /// render whose distance from a reference with knobs `reference` estimates the reference's own
-  /// bias. nullptr: the reference's error is its noise.
-  nlohmann::json (*bias_check)(const nlohmann::json& reference) = nullptr;
+  /// For a progressive integrator whose error is not all noise (ppm: the blur its shrinking
+  /// radius leaves is a bias): the knob counting its stages ("passes"). Its renders return
+  /// earlier stages' images on request (RenderOptions::checkpoints), from which a reference
+  /// estimates its own bias (harness/reference_floor.h). nullptr: not progressive.
+  const char* stage_knob = nullptr;
+  /// The order p of such an integrator's bias, which falls as stages^-p at the knobs given
+  /// (ppm: 1 - alpha).
+  double (*bias_order)(const nlohmann::json& params) = nullptr;
 
   /// Every knob with its default filled in, from the given ones (a JSON object, possibly empty).
   /// Throws knobs::ConfigError, one line naming the knob, on an unknown or bad knob.

@@ -1,0 +1,100 @@
+#include "harness/reference_floor.h"
+
+#include <cmath>
+#include <cstddef>
+#include <stdexcept>
+#include <vector>
+
+namespace harness {
+
+namespace {
+
+void require_size(const tracer::Image& image, const tracer::Image& like, const char* what) {
+  if (image.width() != like.width() || image.height() != like.height() || image.pixels().empty())
+    throw std::invalid_argument(std::string("progressive reference: the ") + what +
+                                " image is missing or of another size");
+}
+
+/// Mean over pixels of per-pixel sums `s` (each the sum of its three channel values' terms),
+/// per channel value, with the 95% upper bound of that mean from the pixels' spread.
+MeanEstimate mean_with_upper(const std::vector<double>& s) {
+  const double n = double(s.size());
+  double mean = 0.0;
+  for (double v : s) mean += v;
+  mean /= n;
+  double var = 0.0;
+  for (double v : s) var += (v - mean) * (v - mean);
+  var = s.size() > 1 ? var / (n - 1.0) : 0.0;
+  const double se = std::sqrt(var / n);
+  // Per channel value: each pixel's sum holds three.
+  return {std::max(0.0, mean / 3.0), std::max(0.0, (mean + 1.96 * se) / 3.0)};
+}
+
+}  // namespace
+
+const char* estimator_name(ReferenceEstimator e) {
+  return e == ReferenceEstimator::Plain ? "plain" : "richardson";
+}
+
+ReferenceEstimator parse_estimator(const std::string& name) {
+  if (name == "plain") return ReferenceEstimator::Plain;
+  if (name == "richardson") return ReferenceEstimator::Richardson;
+  throw std::invalid_argument("estimator must be plain or richardson, got '" + name + "'");
+}
+
+int estimator_depth(ReferenceEstimator e) { return e == ReferenceEstimator::Plain ? 1 : 2; }
+
+ProgressiveReference progressive_reference(const HalfStages& a, const HalfStages& b, double order,
+                                           ReferenceEstimator e, double epsilon) {
+  if (!(order > 0.0) || !std::isfinite(order))
+    throw std::invalid_argument("progressive reference: the bias order must be > 0");
+  const bool richardson = e == ReferenceEstimator::Richardson;
+  for (const HalfStages* h : {&a, &b}) {
+    require_size(h->n, a.n, "N-stage");
+    require_size(h->n8, a.n, "N/8-stage");
+    if (richardson) require_size(h->n64, a.n, "N/64-stage");
+  }
+  const double g = std::pow(double(kStageRatio), order);
+  // The estimate of one half at N (now) and one checkpoint earlier (then), per channel value.
+  const auto now = [&](const HalfStages& h, std::size_t i, int c) {
+    const double n = h.n.pixels()[i][c], n8 = h.n8.pixels()[i][c];
+    return richardson ? (g * n - n8) / (g - 1.0) : n;
+  };
+  const auto then = [&](const HalfStages& h, std::size_t i, int c) {
+    const double n8 = h.n8.pixels()[i][c];
+    return richardson ? (g * n8 - double(h.n64.pixels()[i][c])) / (g - 1.0) : n8;
+  };
+
+  const std::size_t pixels = a.n.pixels().size();
+  ProgressiveReference out;
+  out.image = tracer::Image(a.n.width(), a.n.height());
+  std::vector<double> bias(pixels), bias_rel(pixels);
+  double noise = 0.0, noise_rel = 0.0;
+  for (std::size_t i = 0; i < pixels; ++i) {
+    double pixel_bias = 0.0, pixel_bias_rel = 0.0;
+    for (int c = 0; c < 3; ++c) {
+      const double xa = now(a, i, c), xb = now(b, i, c);
+      const double r = 0.5 * (xa + xb);
+      out.image.at(int(i % std::size_t(a.n.width())), int(i / std::size_t(a.n.width())))[c] = float(r);
+      const double w = 1.0 / (r * r + epsilon);
+      const double n2 = 0.25 * (xa - xb) * (xa - xb);
+      const double da = xa - then(a, i, c), db = xb - then(b, i, c);
+      const double dbar = 0.5 * (da + db);
+      const double b2 = (dbar * dbar - 0.25 * (da - db) * (da - db)) / ((g - 1.0) * (g - 1.0));
+      noise += n2;
+      noise_rel += w * n2;
+      pixel_bias += b2;
+      pixel_bias_rel += w * b2;
+    }
+    bias[i] = pixel_bias;
+    bias_rel[i] = pixel_bias_rel;
+  }
+  const double values = 3.0 * double(pixels);
+  out.noise_mse = noise / values;
+  out.noise_rel = noise_rel / values;
+  out.bias_mse = mean_with_upper(bias);
+  out.bias_rel = mean_with_upper(bias_rel);
+  return out;
+}
+
+}  // namespace harness

@@ -1,0 +1,122 @@
+// The floor of a progressive reference (harness/reference_floor.h) on synthetic stages whose
+// truth, bias and noise are known: the plain estimator's bias and noise are recovered,
+// Richardson's cancels a pure N^-p bias, and what it leaves of a faster term is over-, never
+// under-estimated.
+
+#include "harness/reference_floor.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <stdexcept>
+
+namespace {
+
+constexpr int kW = 200, kH = 150;
+constexpr double kOrder = 1.0 / 3.0;
+constexpr double kStages = 512.0;  // N; checkpoints at N/8 and N/64
+
+/// A synthetic progressive estimator per channel value: truth t, bias beta N^-p + gamma N^-2p,
+/// noise sigma N^-p (independent draws at each stage and half).
+struct Synthetic {
+  std::vector<double> truth, beta, gamma;
+  double sigma = 0.0;
+
+  Synthetic(double gamma_scale, double sigma_, std::uint32_t seed) : sigma(sigma_) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    for (int i = 0; i < kW * kH * 3; ++i) {
+      truth.push_back(2.0 * u(rng));
+      beta.push_back(2.0 * u(rng) - 1.0);
+      gamma.push_back(gamma_scale * (2.0 * u(rng) - 1.0));
+    }
+  }
+  tracer::Image stage(double n, std::mt19937& rng) const {
+    std::normal_distribution<double> z(0.0, 1.0);
+    tracer::Image img(kW, kH);
+    for (int i = 0; i < kW * kH; ++i)
+      for (int c = 0; c < 3; ++c) {
+        const std::size_t v = std::size_t(i) * 3 + std::size_t(c);
+        const double x = truth[v] + beta[v] * std::pow(n, -kOrder) + gamma[v] * std::pow(n, -2.0 * kOrder) +
+                         sigma * std::pow(n, -kOrder) * z(rng);
+        img.at(i % kW, i / kW)[c] = float(x);
+      }
+    return img;
+  }
+  harness::HalfStages half(std::uint32_t seed) const {
+    std::mt19937 rng(seed);
+    return {stage(kStages, rng), stage(kStages / 8, rng), stage(kStages / 64, rng)};
+  }
+  /// RMS over values of f(v).
+  template <class F>
+  double rms(F f) const {
+    double s = 0.0;
+    for (std::size_t v = 0; v < truth.size(); ++v) s += f(v) * f(v);
+    return std::sqrt(s / double(truth.size()));
+  }
+  double rmse_to_truth(const tracer::Image& img) const {
+    return rms([&](std::size_t v) { return double(img.pixels()[v / 3][int(v % 3)]) - truth[v]; });
+  }
+};
+
+TEST(ReferenceFloor, PlainRecoversItsBiasAndNoise) {
+  const Synthetic s(0.0, 0.5, 1);
+  const harness::ProgressiveReference r =
+      harness::progressive_reference(s.half(2), s.half(3), kOrder, harness::ReferenceEstimator::Plain, 1e-2);
+  const double bias = s.rms([&](std::size_t v) { return s.beta[v] * std::pow(kStages, -kOrder); });
+  const double noise = s.sigma * std::pow(kStages, -kOrder) / std::sqrt(2.0);  // the mean of two halves
+  EXPECT_NEAR(std::sqrt(r.bias_mse.value), bias, 0.05 * bias);
+  EXPECT_GE(r.bias_mse.upper, r.bias_mse.value);
+  EXPECT_NEAR(std::sqrt(r.noise_mse), noise, 0.05 * noise);
+  // Together they are the reference's true error.
+  EXPECT_NEAR(std::sqrt(r.noise_mse + r.bias_mse.value), s.rmse_to_truth(r.image), 0.05 * s.rmse_to_truth(r.image));
+  EXPECT_GT(r.bias_rel.value, 0.0);
+  EXPECT_GT(r.noise_rel, 0.0);
+}
+
+TEST(ReferenceFloor, RichardsonCancelsTheLeadingBias) {
+  const Synthetic s(0.0, 0.1, 4);
+  const harness::ProgressiveReference plain =
+      harness::progressive_reference(s.half(5), s.half(6), kOrder, harness::ReferenceEstimator::Plain, 1e-2);
+  const harness::ProgressiveReference rich =
+      harness::progressive_reference(s.half(5), s.half(6), kOrder, harness::ReferenceEstimator::Richardson, 1e-2);
+  // No bias left, and its estimate says so (its upper bound is a few standard errors).
+  const double plain_bias = std::sqrt(plain.bias_mse.value);
+  EXPECT_LT(std::sqrt(rich.bias_mse.upper), 0.2 * plain_bias);
+  // Its error against the truth is its noise alone, which is larger than plain's: (g L_N - L_N/8)
+  // with g = 2 weighs the noisier early stage in.
+  EXPECT_NEAR(s.rmse_to_truth(rich.image), std::sqrt(rich.noise_mse), 0.05 * std::sqrt(rich.noise_mse));
+  EXPECT_GT(rich.noise_mse, 2.0 * plain.noise_mse);
+}
+
+TEST(ReferenceFloor, RichardsonOverestimatesWhatAFasterTermLeaves) {
+  // gamma N^-2p remains after cancelling N^-p: -g gamma N^-2p. Its estimate from one stage
+  // earlier sees (g^2 - 1)/(g - 1) = 3 times that (a residual of order 2p, not p).
+  const Synthetic s(40.0, 0.05, 7);
+  const harness::ProgressiveReference rich =
+      harness::progressive_reference(s.half(8), s.half(9), kOrder, harness::ReferenceEstimator::Richardson, 1e-2);
+  const double g = std::pow(8.0, kOrder);
+  const double residual = s.rms([&](std::size_t v) { return g * s.gamma[v] * std::pow(kStages, -2.0 * kOrder); });
+  const double estimate = std::sqrt(rich.bias_mse.value);
+  EXPECT_GE(estimate, residual);
+  EXPECT_NEAR(estimate, (g + 1.0) * residual, 0.1 * (g + 1.0) * residual);
+}
+
+TEST(ReferenceFloor, BadInputIsRefused) {
+  const Synthetic s(0.0, 0.5, 10);
+  harness::HalfStages a = s.half(11), b = s.half(12);
+  EXPECT_THROW(harness::progressive_reference(a, b, 0.0, harness::ReferenceEstimator::Plain, 1e-2),
+               std::invalid_argument);
+  b.n64 = tracer::Image();
+  EXPECT_NO_THROW(harness::progressive_reference(a, b, kOrder, harness::ReferenceEstimator::Plain, 1e-2));
+  EXPECT_THROW(harness::progressive_reference(a, b, kOrder, harness::ReferenceEstimator::Richardson, 1e-2),
+               std::invalid_argument);
+  b.n8 = tracer::Image(3, 2);
+  EXPECT_THROW(harness::progressive_reference(a, b, kOrder, harness::ReferenceEstimator::Plain, 1e-2),
+               std::invalid_argument);
+  EXPECT_EQ(harness::parse_estimator("richardson"), harness::ReferenceEstimator::Richardson);
+  EXPECT_THROW(harness::parse_estimator("Plain"), std::invalid_argument);
+}
+
+}  // namespace
