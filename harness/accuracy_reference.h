@@ -74,6 +74,9 @@ struct AccuracyReference {
   /// Under a stopping rule (ReferenceOptions::floor_target): the target, the levels tried and
   /// what stopped them ("floor", "time_limit" or "stage_limit"); null otherwise.
   nlohmann::json stopping;
+  /// The closed form it is, when the scene has one ("furnace": harness/analytic_reference.h);
+  /// empty for a rendered reference.
+  std::string analytic;
 };
 
 /// How to obtain references.

@@ -276,7 +276,7 @@ const AccuracyReference& FrontsInspector::reference(const tracer::Scene& scene, 
     (r.from_cache ? cached_ : made_)++;
     if (options_.progress)
       std::fprintf(stderr, "fronts: reference %s %s (%s): floor RMSE %.3g (noise %.3g, truncation %.3g, bias %.3g)\n",
-                   r.key.c_str(), r.from_cache ? "from the cache" : "rendered", group_name(group).c_str(),
+                   r.key.c_str(), !r.analytic.empty() ? "in closed form" : r.from_cache ? "from the cache" : "rendered", group_name(group).c_str(),
                    r.floor.rmse, r.floor.noise_rmse, r.floor.truncation_rmse, r.floor.bias_rmse);
     it = references_.emplace(key, std::move(r)).first;
   }
@@ -309,6 +309,7 @@ void FrontsInspector::operator()(const tracer::Scene& scene, const accel::AnyAcc
                           {"params", ref.spec.params},
                           {"floor", to_json(ref.floor)}};
   if (!ref.stopping.is_null()) m.extra["reference"]["stopping"] = ref.stopping;
+  if (!ref.analytic.empty()) m.extra["reference"]["analytic"] = ref.analytic;
   // The split into bias and variance over seeds, for knobs whose reference is itself stochastic
   // (spp, photon counts): a deterministic reference (depth 64) is rendered with the row's own
   // seed, so comparing other seeds' images with it would count their sampling noise as error.

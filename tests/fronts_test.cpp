@@ -4,12 +4,16 @@
 // tuner honouring its budget.
 
 #include "harness/accuracy_reference.h"
+#include "harness/analytic_reference.h"
 #include "harness/fronts.h"
 #include "cli/fronts_flags.h"
 #include "harness/sweep_results.h"
 #include "harness/tune_accuracy.h"
 
 #include "scenes_gen/generators.h"
+#include "scenes_gen/photon_scenes.h"
+#include "integrators/integrators.h"
+#include "tracer/image_error.h"
 #include "tracer/render.h"
 
 #include "cli_run.h"
@@ -554,6 +558,43 @@ TEST(AccuracyReference, ProgressiveLevelsStopAtTheFloorTargetOrTheTimeLimit) {
   EXPECT_GT(rich.floor.noise_rmse, 0.0);
   EXPECT_NE(rich.key, base.key);
   fs::remove_all(dir);
+}
+
+// The furnace has a closed form, and a consistent reference (ppm) converges to it: it is the
+// reference there, with floor 0. Scenes that only look like it are rendered.
+TEST(AccuracyReference, TheFurnaceIsItsOwnClosedForm) {
+  tracer::Scene scene = scenes_gen::make_furnace_scene(2.0f, 0.6f, 50.0f);
+  const accel::AnyAccel built = accel::make_accel("bvh", json::object(), scene.geometry.primitive_bounds());
+  const harness::ReferenceSpec spec =
+      harness::group_reference("photon", {"global_photons"}, json::object(), 16, 12, {{"passes", 8}, {"photons_per_pass", 4000}});
+  harness::ReferenceOptions ro;
+  ro.progress = false;
+  const harness::AccuracyReference r = harness::obtain_reference(scene, built, spec, ro);
+  EXPECT_EQ(r.analytic, "furnace");
+  EXPECT_EQ(r.floor.rmse, 0.0);
+  const double truth = 0.6 * 50.0 / (4.0 * M_PI * M_PI * 4.0 * 0.4);
+  ASSERT_EQ(r.image.width(), 16);
+  for (const auto& p : r.image.pixels()) EXPECT_NEAR(p.x, truth, 1e-6 * truth);
+  // ppm itself lands on it within a few percent at this budget.
+  tracer::RenderOptions o;
+  o.width = 16;
+  o.height = 12;
+  json params = spec.params;
+  params["seed"] = 3;
+  params["passes"] = 64;
+  const tracer::Image ppm = tracer::render(scene, built, o, *integrators::find("ppm"), params).image;
+  EXPECT_LT(tracer::image_error(ppm, r.image).rmse, 0.05 * truth);
+  // Whitted's references stay rendered: its recursion stops at the first diffuse bounce.
+  EXPECT_TRUE(harness::obtain_reference(scene, built,
+                                        harness::group_reference("whitted", {"spp"}, json::object(), 8, 6, {{"spp", 4}}), ro)
+                  .analytic.empty());
+  // A light off the centre, or the camera outside, is no furnace.
+  scene.lights[0].position.x = 0.1f;
+  EXPECT_FALSE(harness::furnace_radiance(scene));
+  scene.lights[0].position.x = 0.0f;
+  EXPECT_TRUE(harness::furnace_radiance(scene));
+  scene.camera.position.z = 3.0f;
+  EXPECT_FALSE(harness::furnace_radiance(scene));
 }
 
 TEST(FrontsCli, BadInputGivesOneLine) {
