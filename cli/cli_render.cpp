@@ -35,6 +35,7 @@ struct RenderFlags {
   std::string scene;
   std::string png;
   std::string pfm;
+  std::vector<int> checkpoints;  ///< --checkpoints: earlier stages of a progressive integrator.
   std::string stats;
   std::string resolution;
   std::string accel;
@@ -110,8 +111,10 @@ int run_render(const RenderFlags& f) {
   if (!std::isfinite(f.exposure))
     throw std::runtime_error("--exposure: must be a finite number of stops");
 
+  if (!f.checkpoints.empty() && f.pfm.empty()) throw std::runtime_error("--checkpoints: needs --pfm (their files sit beside it)");
   tracer::RenderOptions options;
   options.threads = f.threads;
+  options.checkpoints = f.checkpoints;
   if (!f.resolution.empty())
     parse_image_size(f.resolution, "--resolution", options.width, options.height);
   accel::BuildLimits limits;
@@ -133,6 +136,8 @@ int run_render(const RenderFlags& f) {
   options.limits = limits;
   const integrators::Setup setup = chosen_integrator(f, scene);
   const tracer::Integrator& integrator = *setup.integrator;
+  if (!f.checkpoints.empty() && !integrator.stage_knob)
+    throw std::runtime_error("--checkpoints: integrator " + std::string(integrator.name) + " is not progressive");
   const int width = options.width ? options.width : scene.camera.width;
   const int height = options.height ? options.height : scene.camera.height;
   const int threads = tracer::resolve_threads(f.threads);
@@ -187,6 +192,13 @@ int run_render(const RenderFlags& f) {
 
   if (!f.png.empty()) result.image.write_png(f.png, f.exposure);
   if (!f.pfm.empty()) result.image.write_pfm(f.pfm);
+  std::vector<std::string> written;
+  for (const auto& [stage, image] : result.checkpoints) {
+    // FILE.pfm -> FILE.STAGE.pfm
+    const std::string path = f.pfm.substr(0, f.pfm.size() - 4) + "." + std::to_string(stage) + ".pfm";
+    image.write_pfm(path);
+    written.push_back(path);
+  }
 
   if (!f.stats.empty()) {
     // The counting pass: same image, with traversal counters on; never the timed one.
@@ -223,6 +235,7 @@ int run_render(const RenderFlags& f) {
   }
   for (const std::string* path : {&f.png, &f.pfm, &f.stats})
     if (!path->empty()) std::printf("wrote    %s\n", path->c_str());
+  for (const std::string& path : written) std::printf("wrote    %s\n", path.c_str());
   return 0;
 }
 
@@ -234,6 +247,11 @@ void add_render_command(CLI::App& app, int& exit_code) {
   cmd->add_option("SCENE", flags->scene, "Scene file (.json or .nff)")->required();
   cmd->add_option("-o,--output", flags->png, "PNG image to write (sRGB, 8 bit)");
   cmd->add_option("--pfm", flags->pfm, "Linear float image to write (PFM)");
+  cmd->add_option("--checkpoints", flags->checkpoints,
+                  "Also write a progressive integrator's images after these stages (ppm: passes), each as "
+                  "PFM-STEM.STAGE.pfm beside --pfm; stages not below its own count are skipped")
+      ->delimiter(',')
+      ->check(CLI::Range(1, 1 << 30));
   cmd->add_option("--threads", flags->threads, "Render threads; 0 = all cores")
       ->check(CLI::Range(0, 4096));
   cmd->add_option("--resolution", flags->resolution,
