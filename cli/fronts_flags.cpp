@@ -282,9 +282,12 @@ void print_fronts(const json& results, std::FILE* out) {
   for (const json& front : results["fronts"]) {
     const std::string scene = front["scene"], name = front["front"], metric = front["metric"];
     const json& ref = front["reference"];
-    std::fprintf(out, "\n%s, front %s: reference %s %s, floor %s %.3g\n", scene.c_str(), name.c_str(),
-                 ref["integrator"].get<std::string>().c_str(), ref["params"].dump().c_str(), metric.c_str(),
-                 front["floor"].get<double>());
+    std::string made_by = ref["integrator"].get<std::string>() + " " + ref["params"].dump();
+    if (ref.contains("analytic")) made_by = "the " + ref["analytic"].get<std::string>() + "'s closed form";
+    if (ref.contains("stopping"))
+      made_by += " (stopping rule: " + ref["stopping"].value("stopped_by", std::string("?")) + ")";
+    std::fprintf(out, "\n%s, front %s: reference %s, floor %s %.3g\n", scene.c_str(), name.c_str(), made_by.c_str(),
+                 metric.c_str(), front["floor"].get<double>());
     std::fprintf(out, "  %-28s %12s %12s %12s %12s %9s  %s\n", "knobs", "render ms", metric.c_str(), "bias", "noise",
                  "resolved", "front");
     for (const json& row : results["rows"]) {
