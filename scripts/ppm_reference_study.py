@@ -51,6 +51,22 @@ def read_pfm(path):
     return np.flipud(data.reshape(h, w, 3)).astype(np.float64)
 
 
+def machine_name():
+    """The CPU and its widest vector ISA, for the figure's title."""
+    model, flags = "unknown CPU", ""
+    try:
+        with open("/proc/cpuinfo") as f:
+            for line in f:
+                if line.startswith("model name") and model == "unknown CPU":
+                    model = line.split(":", 1)[1].strip()
+                if line.startswith("flags") and not flags:
+                    flags = line
+    except OSError:
+        pass
+    isa = "AVX-512" if "avx512f" in flags else "AVX2" if "avx2" in flags else "SSE"
+    return f"{model}, {os.cpu_count()} cores, {isa}"
+
+
 def rmse(a, b):
     return float(np.sqrt(np.mean((a - b) ** 2)))
 
@@ -103,8 +119,7 @@ def main():
                  "--param", f"passes={long_passes}", "--param", f"photons_per_pass={args.photons}",
                  "--param", f"seed={seed}", "--threads", "0", "--pfm", pfm, "--checkpoints", str(RATIO * args.passes)])
         halves.append((read_pfm(pfm), read_pfm(check)))
-    order = refs[("plain", args.passes)]["floor"]  # the bias order comes from the spec; ppm's alpha 2/3
-    g = RATIO ** (1.0 / 3.0)
+    g = RATIO ** (1.0 / 3.0)  # ppm's bias order at its default alpha 2/3
     rich_halves = [(g * n - n8) / (g - 1.0) for n, n8 in halves]
     truth = 0.5 * (rich_halves[0] + rich_halves[1])
     truth_noise = rmse(rich_halves[0], rich_halves[1]) / 2.0
@@ -135,7 +150,6 @@ def main():
               f"{r['actual_error']:9.4g} {ratio if ratio is None else round(ratio, 2)!s:>12}")
     print(f"truth: {long_passes} passes, noise {truth_noise:.3g}; plain and richardson truths differ by "
           f"{summary['truth']['plain_minus_richardson_rmse']:.3g}")
-    del order
 
     import matplotlib
     matplotlib.use("Agg")
@@ -145,29 +159,43 @@ def main():
         h, w = err.shape[0] // k * k, err.shape[1] // k * k
         return err[:h, :w].reshape(h // k, k, w // k, k).mean(axis=(1, 3))
 
-    fig, axes = plt.subplots(1, 4, figsize=(15, 3.4))
+    fig = plt.figure(figsize=(15, 7), layout="constrained")
+    top = fig.subfigures(2, 1, height_ratios=[1.0, 1.1])
+    axes = top[0].subplots(1, 4)
     axes[0].imshow(np.clip(truth / max(1e-9, np.percentile(truth, 99)), 0, 1) ** (1 / 2.2))
-    axes[0].set_title(f"truth: Richardson of {long_passes} passes")
+    axes[0].set_title(f"truth: Richardson of {long_passes} passes", fontsize=9)
     err = {}
-    for ax, key in zip(axes[1:3], (("plain", args.passes), ("richardson", args.passes))):
-        e = blocks(np.abs(refs[key]["image"] - truth).mean(axis=2))
-        err[key] = e
+    for key in (("plain", args.passes), ("richardson", args.passes)):
+        err[key] = blocks(np.abs(refs[key]["image"] - truth).mean(axis=2))
     vmax = max(float(np.percentile(e, 99.5)) for e in err.values())
     for ax, (key, e) in zip(axes[1:3], err.items()):
         im = ax.imshow(e, vmin=0, vmax=vmax, cmap="magma")
-        ax.set_title(f"|{key[0]} {key[1]} - truth| (4x4 mean)")
-    fig.colorbar(im, ax=axes[1:3], fraction=0.025)
+        ax.set_title(f"|{key[0]}, {key[1]} passes - truth| (4x4 mean)", fontsize=9)
+    top[0].colorbar(im, ax=axes[1:3], fraction=0.03)
     # Where the cancellation helps (blue) and where it fails (red).
     diff = err[("richardson", args.passes)] - err[("plain", args.passes)]
-    lim = float(np.percentile(np.abs(diff), 99.5))
+    lim = max(1e-12, float(np.percentile(np.abs(diff), 99.5)))
     im2 = axes[3].imshow(diff, vmin=-lim, vmax=lim, cmap="coolwarm")
-    axes[3].set_title("richardson - plain error (red: worse)")
-    fig.colorbar(im2, ax=axes[3], fraction=0.046)
+    axes[3].set_title("richardson - plain error (red: richardson worse)", fontsize=9)
+    top[0].colorbar(im2, ax=axes[3], fraction=0.046)
     for ax in axes:
         ax.set_xticks([])
         ax.set_yticks([])
-    fig.suptitle(f"ppm references on {args.scene}, {args.photons} photons per pass, {args.resolution}; "
-                 "measured on the machine that ran them", fontsize=9)
+    # Each reference's estimated floor against its actual error.
+    bar = top[1].subplots(1, 1)
+    labels = [f"{r['estimator']}\n{r['passes']} passes" for r in rows]
+    x = np.arange(len(rows))
+    bar.bar(x - 0.3, [r["noise"] for r in rows], 0.2, label="estimated noise", color="#9ecae1")
+    bar.bar(x - 0.1, [r["bias_upper"] for r in rows], 0.2, label="estimated bias (95% upper)", color="#fdae6b")
+    bar.bar(x + 0.1, [r["floor"] for r in rows], 0.2, label="floor = sqrt(noise² + bias²)", color="#3182bd")
+    bar.bar(x + 0.3, [r["actual_error"] for r in rows], 0.2, label="actual error (against the truth)", color="#d62728")
+    bar.set_xticks(x, labels)
+    bar.set_ylabel("RMSE (radiance)")
+    bar.legend(fontsize=8)
+    bar.set_title("estimated floor against actual error; the truth's own noise "
+                  f"({truth_noise:.3g}) removed in quadrature", fontsize=9)
+    fig.suptitle(f"ppm references on {args.scene}, {args.photons} photons per map per pass, {args.resolution}; "
+                 f"{machine_name()}", fontsize=9)
     for ext in ("png", "svg"):
         fig.savefig(os.path.join(args.out, f"ppm_reference_floor.{ext}"), dpi=80)
     print(f"wrote {args.out}/ppm_reference_floor.{{json,png,svg}}")
