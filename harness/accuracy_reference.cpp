@@ -197,8 +197,7 @@ static AccuracyReference obtain_level(const tracer::Scene& scene, const accel::A
   const bool progressive = !spec.stage_knob.empty();
   const long long n = progressive ? stages_of(spec) : 0;
   const int depth = progressive ? estimator_depth(spec.estimator) : 0;
-  long long divisor = 1;
-  for (int d = 0; d < depth; ++d) divisor *= kStageRatio;
+  const long long divisor = progressive ? estimator_divisor(spec.estimator) : 1;
   if (progressive && n % divisor != 0)
     throw std::runtime_error("reference: a " + std::string(estimator_name(spec.estimator)) + " reference needs " +
                              spec.stage_knob + " divisible by " + std::to_string(divisor) + ", got " +

@@ -180,8 +180,7 @@ ReferenceSpec group_reference(const std::string& integrator, const std::vector<s
     spec.estimator = estimator;
     // Its bias comes from checkpoints at N/8 (and N/64): N must divide.
     const long long stages = reference_integrator.params(spec.params).at(spec.stage_knob).get<long long>();
-    long long divisor = 1;
-    for (int d = 0; d < estimator_depth(estimator); ++d) divisor *= kStageRatio;
+    const long long divisor = estimator_divisor(estimator);
     if (stages % divisor != 0)
       throw SweepError("--reference-set: a " + std::string(estimator_name(estimator)) + " " + chosen + " reference needs " +
                        spec.stage_knob + " divisible by " + std::to_string(divisor) + " (its checkpoints), got " +

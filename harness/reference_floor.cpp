@@ -44,6 +44,12 @@ ReferenceEstimator parse_estimator(const std::string& name) {
 
 int estimator_depth(ReferenceEstimator e) { return e == ReferenceEstimator::Plain ? 1 : 2; }
 
+long long estimator_divisor(ReferenceEstimator e) {
+  long long d = 1;
+  for (int i = 0; i < estimator_depth(e); ++i) d *= kStageRatio;
+  return d;
+}
+
 ProgressiveReference progressive_reference(const HalfStages& a, const HalfStages& b, double order,
                                            ReferenceEstimator e, double epsilon) {
   if (!(order > 0.0) || !std::isfinite(order))

@@ -48,6 +48,9 @@ inline constexpr int kStageRatio = 8;
 /// Checkpoints an estimator needs below N: 1 (N/8) for plain, 2 (also N/64) for Richardson.
 int estimator_depth(ReferenceEstimator e);
 
+/// What N must be divisible by for those checkpoints: 8 for plain, 64 for Richardson.
+long long estimator_divisor(ReferenceEstimator e);
+
 /// One half's images after N, N/8 and N/64 stages (n64 only for Richardson).
 struct HalfStages {
   tracer::Image n;
