@@ -173,8 +173,17 @@ std::string default_reference_cache() {
   return ".accelbench-cache/references";
 }
 
+/// Fills r.info and writes r to the cache (when there is one).
+static void store(AccuracyReference& r, const json& renders, const accel::AnyAccel& built, double render_s,
+           const ReferenceOptions& options);
+
+static AccuracyReference obtain_progressive(const tracer::Scene& scene, const accel::AnyAccel& built,
+                                            const ReferenceSpec& spec, const ReferenceOptions& options);
+
+/// One reference at exactly `spec`'s knobs: from the cache, or rendered and stored.
 static AccuracyReference obtain_level(const tracer::Scene& scene, const accel::AnyAccel& built, const ReferenceSpec& spec,
                                const ReferenceOptions& options) {
+  if (!spec.stage_knob.empty()) return obtain_progressive(scene, built, spec, options);
   const std::string key = reference_key(scene, spec, options.epsilon);
   const fs::path dir = options.cache_dir;
   if (!options.cache_dir.empty() && !options.refresh)
@@ -192,41 +201,11 @@ static AccuracyReference obtain_level(const tracer::Scene& scene, const accel::A
   r.spec = spec;
   json renders = json::array();
   const double eps = options.epsilon;
-  // A progressive reference's halves also keep their images one and two checkpoints earlier
-  // (free: the same renders stopped early), from which its bias is estimated.
-  const bool progressive = !spec.stage_knob.empty();
-  const long long n = progressive ? stages_of(spec) : 0;
-  const int depth = progressive ? estimator_depth(spec.estimator) : 0;
-  const long long divisor = progressive ? estimator_divisor(spec.estimator) : 1;
-  if (progressive && n % divisor != 0)
-    throw std::runtime_error("reference: a " + std::string(estimator_name(spec.estimator)) + " reference needs " +
-                             spec.stage_knob + " divisible by " + std::to_string(divisor) + ", got " +
-                             std::to_string(n));
-  const std::vector<int> checkpoints =
-      progressive ? std::vector<int>{int(n / kStageRatio), int(n / divisor)} : std::vector<int>{};
   Rendered a = render(scene, built, spec.integrator, spec.stochastic ? with_seed(spec.params, kReferenceSeedA) : spec.params,
-                      spec.width, spec.height, options.threads, checkpoints);
+                      spec.width, spec.height, options.threads);
   renders.push_back({{"what", spec.stochastic ? "half A" : "reference"}, {"render_ms", a.ms}, {"rays", a.rays}});
-  double noise_rel = 0.0, bias_rel = 0.0;
-  if (progressive) {
-    Rendered b = render(scene, built, spec.integrator, with_seed(spec.params, kReferenceSeedB), spec.width,
-                        spec.height, options.threads, checkpoints);
-    renders.push_back({{"what", "half B"}, {"render_ms", b.ms}, {"rays", b.rays}});
-    HalfStages stages[2];
-    const Rendered* halves[2] = {&a, &b};
-    for (int h = 0; h < 2; ++h) {
-      stages[h].n = halves[h]->image;
-      stages[h].n8 = stage_image(*halves[h], n / kStageRatio, n, "reference");
-      if (depth > 1) stages[h].n64 = stage_image(*halves[h], n / divisor, n, "reference");
-    }
-    const ProgressiveReference p = progressive_reference(stages[0], stages[1], spec.bias_order, spec.estimator, eps);
-    r.image = p.image;
-    r.floor.noise_rmse = std::sqrt(p.noise_mse);
-    r.floor.bias_rmse = std::sqrt(p.bias_mse.upper);
-    r.floor.bias_rmse_estimate = std::sqrt(p.bias_mse.value);
-    noise_rel = p.noise_rel;
-    bias_rel = p.bias_rel.upper;
-  } else if (spec.stochastic) {
+  double noise_rel = 0.0;
+  if (spec.stochastic) {
     Rendered b = render(scene, built, spec.integrator, with_seed(spec.params, kReferenceSeedB), spec.width,
                         spec.height, options.threads);
     renders.push_back({{"what", "half B"}, {"render_ms", b.ms}, {"rays", b.rays}});
@@ -250,22 +229,28 @@ static AccuracyReference obtain_level(const tracer::Scene& scene, const accel::A
     r.floor.truncation_rmse = d.rmse;
     trunc_rel = d.rel_mse;
   }
-  r.floor.rmse = std::sqrt(r.floor.noise_rmse * r.floor.noise_rmse + r.floor.truncation_rmse * r.floor.truncation_rmse +
-                           r.floor.bias_rmse * r.floor.bias_rmse);
-  r.floor.rel_mse = noise_rel + trunc_rel + bias_rel;
+  r.floor.rmse = std::hypot(r.floor.noise_rmse, r.floor.truncation_rmse);
+  r.floor.rel_mse = noise_rel + trunc_rel;
   r.floor.epsilon = eps;
   r.render_s = std::chrono::duration<double>(Clock::now() - t0).count();
+  store(r, renders, built, r.render_s, options);
+  return r;
+}
 
+static void store(AccuracyReference& r, const json& renders, const accel::AnyAccel& built, double render_s,
+                  const ReferenceOptions& options) {
+  const std::string& key = r.key;
+  const fs::path dir = options.cache_dir;
   const json machine = machine_info();
   r.info = {{"key", key},
             {"version", kReferenceVersion},
-            {"spec", to_json(spec)},
+            {"spec", to_json(r.spec)},
             {"floor", to_json(r.floor)},
             {"renders", renders},
             {"structure", accel::name_of(built)},
             {"made", utc_now_iso8601()},
             {"commit", machine.value("git_commit", "")},
-            {"render_s", r.render_s}};
+            {"render_s", render_s}};
   for (int c = 0; c < 3; ++c)
     for (const auto& p : r.image.pixels())
       if (!std::isfinite(p[c])) throw std::runtime_error("reference " + key + ": the render has non-finite pixels");
@@ -280,6 +265,135 @@ static AccuracyReference obtain_level(const tracer::Scene& scene, const accel::A
       if (!out) throw std::runtime_error("reference cache: cannot write " + p);
     });
   }
+}
+
+namespace {
+
+/// The two halves of a progressive reference, each with its images at N, N/8 and (when N
+/// divides) N/64 stages, and how they were made.
+struct Halves {
+  HalfStages half[2];
+  json renders = json::array();
+  double render_s = 0.0;  ///< Wall time that rendered them, s (when they were made).
+  bool from_cache = false;
+};
+
+/// The key of a progressive reference's halves: everything that decides their pixels, i.e. its
+/// spec less the estimator, so plain and Richardson references share one pair of renders, and a
+/// change to how the floor is estimated needs none.
+std::string halves_key(const tracer::Scene& scene, const ReferenceSpec& spec) {
+  json s = to_json(spec);
+  s.erase("estimator");
+  const json all = {{"version", kReferenceVersion}, {"scene", tracer::scene_to_json(scene)}, {"halves", s}};
+  return tracer::hash_hex(fnv1a(all.dump()));
+}
+
+/// The stages kept of N: N, N/8 and, when N divides by 64, N/64.
+std::vector<long long> kept_stages(long long n) {
+  std::vector<long long> out = {n, n / kStageRatio};
+  if (n % (kStageRatio * kStageRatio) == 0) out.push_back(n / (kStageRatio * kStageRatio));
+  return out;
+}
+
+fs::path stage_file(const fs::path& dir, const std::string& key, int half, long long stage) {
+  return dir / (key + (half == 0 ? ".A." : ".B.") + std::to_string(stage) + ".pfm");
+}
+
+tracer::Image& stage_slot(HalfStages& h, int index) { return index == 0 ? h.n : index == 1 ? h.n8 : h.n64; }
+
+std::optional<Halves> read_cached_halves(const fs::path& dir, const std::string& key, const ReferenceSpec& spec,
+                                         long long n) {
+  const fs::path meta = dir / (key + ".halves.json");
+  std::error_code ec;
+  if (!fs::is_regular_file(meta, ec)) return std::nullopt;
+  try {
+    const json info = input::parse_json(input::read_file(meta.string(), kMaxReferenceMetaBytes, "reference metadata"));
+    if (info.value("key", "") != key || info.value("version", 0) != kReferenceVersion) return std::nullopt;
+    Halves h;
+    const std::vector<long long> stages = kept_stages(n);
+    for (int half = 0; half < 2; ++half)
+      for (std::size_t i = 0; i < stages.size(); ++i) {
+        tracer::Image image = tracer::Image::read_pfm(stage_file(dir, key, half, stages[i]).string());
+        if (image.width() != spec.width || image.height() != spec.height) return std::nullopt;
+        stage_slot(h.half[half], int(i)) = std::move(image);
+      }
+    h.renders = info.at("renders");
+    h.render_s = info.at("render_s").get<double>();
+    h.from_cache = true;
+    return h;
+  } catch (const std::exception&) {
+    return std::nullopt;  // unreadable or torn: render them again
+  }
+}
+
+}  // namespace
+
+// A progressive reference: its two halves with their earlier stages (cached on their own), and
+// the estimator's image and floor computed from them on every use.
+static AccuracyReference obtain_progressive(const tracer::Scene& scene, const accel::AnyAccel& built,
+                                            const ReferenceSpec& spec, const ReferenceOptions& options) {
+  const std::string key = reference_key(scene, spec, options.epsilon);
+  const long long n = stages_of(spec);
+  const long long divisor = estimator_divisor(spec.estimator);
+  if (n % divisor != 0)
+    throw std::runtime_error("reference: a " + std::string(estimator_name(spec.estimator)) + " reference needs " +
+                             spec.stage_knob + " divisible by " + std::to_string(divisor) + ", got " +
+                             std::to_string(n));
+  const std::string hkey = halves_key(scene, spec);
+  const fs::path dir = options.cache_dir;
+  std::optional<Halves> halves;
+  if (!options.cache_dir.empty() && !options.refresh) halves = read_cached_halves(dir, hkey, spec, n);
+  if (!halves) {
+    const auto t0 = Clock::now();
+    if (options.progress)
+      std::fprintf(stderr, "fronts: rendering reference %s: %s %s at %dx%d, two independent halves\n", key.c_str(),
+                   spec.integrator.c_str(), spec.params.dump().c_str(), spec.width, spec.height);
+    validate_structure(scene, built, spec, options);
+    halves.emplace();
+    const std::vector<long long> stages = kept_stages(n);
+    const std::vector<int> checkpoints(stages.begin() + 1, stages.end());
+    for (int half = 0; half < 2; ++half) {
+      const Rendered r = render(scene, built, spec.integrator, with_seed(spec.params, half == 0 ? kReferenceSeedA : kReferenceSeedB),
+                                spec.width, spec.height, options.threads, checkpoints);
+      halves->renders.push_back({{"what", half == 0 ? "half A" : "half B"}, {"render_ms", r.ms}, {"rays", r.rays}});
+      for (std::size_t i = 0; i < stages.size(); ++i)
+        stage_slot(halves->half[half], int(i)) = stage_image(r, stages[i], n, "reference");
+    }
+    halves->render_s = std::chrono::duration<double>(Clock::now() - t0).count();
+    if (!options.cache_dir.empty()) {
+      std::error_code ec;
+      fs::create_directories(dir, ec);
+      if (ec) throw std::runtime_error("reference cache: cannot create " + dir.string() + ": " + ec.message());
+      for (int half = 0; half < 2; ++half)
+        for (std::size_t i = 0; i < stages.size(); ++i)
+          write_atomic(stage_file(dir, hkey, half, stages[i]),
+                       [&](const std::string& p) { stage_slot(halves->half[half], int(i)).write_pfm(p); });
+      const json meta = {{"key", hkey},   {"version", kReferenceVersion},    {"renders", halves->renders},
+                         {"stages", stages}, {"render_s", halves->render_s}, {"made", utc_now_iso8601()}};
+      write_atomic(dir / (hkey + ".halves.json"), [&](const std::string& p) {
+        std::ofstream out(p);
+        out << meta.dump(2) << '\n';
+        if (!out) throw std::runtime_error("reference cache: cannot write " + p);
+      });
+    }
+  }
+  const ProgressiveReference p =
+      progressive_reference(halves->half[0], halves->half[1], spec.bias_order, spec.estimator, options.epsilon);
+  AccuracyReference r;
+  r.key = key;
+  r.spec = spec;
+  r.image = p.image;
+  r.floor.noise_rmse = std::sqrt(p.noise_mse);
+  r.floor.bias_rmse = std::sqrt(p.bias_mse.upper);
+  r.floor.bias_rmse_estimate = std::sqrt(p.bias_mse.value);
+  r.floor.rmse = std::sqrt(p.noise_mse + p.bias_mse.upper);
+  r.floor.rel_mse = p.noise_rel + p.bias_rel.upper;
+  r.floor.epsilon = options.epsilon;
+  r.from_cache = halves->from_cache;
+  r.render_s = halves->from_cache ? 0.0 : halves->render_s;
+  // The reference as a file of its own too (its image and floor), for readers of the cache.
+  store(r, halves->renders, built, halves->render_s, options);
+  r.info["halves"] = hkey;
   return r;
 }
 

@@ -20,9 +20,10 @@
 //   bias^2  = (Dbar^2 - (D_A - D_B)^2 / 4) / (g - 1)^2,           D_h = X_h - X'_h,
 // the second the bias/variance split of two seeds applied to D (unbiased; it can be negative per
 // value, and is clamped at 0 only after averaging). The bias's mean over values comes with a 95%
-// upper bound (mean + 1.96 standard errors over pixels), which the floor uses: a floor should err
-// high. Pixels are not independent (one photon lights its neighbours), so the bound is optimistic
-// where the bias sits in a few large blobs.
+// upper bound (the clamped mean + 1.96 standard errors), which the floor uses: a floor should err
+// high. Pixels are not independent (one photon lights its neighbours), so the standard error
+// comes from the spread of 8 x 8 blocks' means rather than single pixels'; it is still optimistic
+// where the bias sits in a few blobs larger than a block.
 
 #include "tracer/image.h"
 
@@ -61,7 +62,7 @@ struct HalfStages {
 /// A mean over channel values with the 95% upper bound of its estimate.
 struct MeanEstimate {
   double value = 0.0;  ///< The estimate (clamped at 0).
-  double upper = 0.0;  ///< Its 95% upper bound (>= value).
+  double upper = 0.0;  ///< Its 95% upper bound: value + 1.96 standard errors of the mean.
 };
 
 /// A progressive reference and its own error.

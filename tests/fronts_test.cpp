@@ -557,6 +557,19 @@ TEST(AccuracyReference, ProgressiveLevelsStopAtTheFloorTargetOrTheTimeLimit) {
   const harness::AccuracyReference rich = harness::obtain_reference(scene, built, spec, ro);
   EXPECT_GT(rich.floor.noise_rmse, 0.0);
   EXPECT_NE(rich.key, base.key);
+  // Plain and Richardson at the same passes share their halves' renders: the plain one at 64
+  // passes was rendered as the stopping rule's second level, and Richardson's halves are those.
+  EXPECT_TRUE(rich.from_cache);
+  spec.estimator = harness::ReferenceEstimator::Plain;
+  const harness::AccuracyReference plain64 = harness::obtain_reference(scene, built, spec, ro);
+  EXPECT_TRUE(plain64.from_cache);
+  EXPECT_NE(plain64.image, rich.image);
+  EXPECT_GT(rich.floor.noise_rmse, plain64.floor.noise_rmse);  // 2 L_N - L_N/8 weighs the noisier stage in
+  // --refresh-reference renders them again, to the same pixels.
+  ro.refresh = true;
+  const harness::AccuracyReference again = harness::obtain_reference(scene, built, spec, ro);
+  EXPECT_FALSE(again.from_cache);
+  EXPECT_EQ(again.image, plain64.image);
   fs::remove_all(dir);
 }
 
