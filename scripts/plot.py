@@ -175,9 +175,12 @@ def machine_note(machines):
     return ("measured on " + "; ".join(notes)) if notes else ""
 
 
-def save(fig, out_dir, name):
-    if MACHINE_NOTE:
-        fig.text(0.99, 0.0, MACHINE_NOTE, ha="right", va="top", fontsize=7, color="0.35")
+def save(fig, out_dir, name, note=None):
+    """Writes the figure as PNG and SVG with `note` (default: every results file's machines)
+    under it."""
+    note = MACHINE_NOTE if note is None else note
+    if note:
+        fig.text(0.99, 0.0, note, ha="right", va="top", fontsize=7, color="0.35")
     paths = []
     for ext in ("png", "svg"):
         path = os.path.join(out_dir, f"{name}.{ext}")
@@ -680,6 +683,9 @@ def plot_fronts(doc, out_dir):
                 # How far the front lies above it: the target is 10x (docs/accuracy.md).
                 ratio = front.get("floor_ratio")
                 label = "reference floor" + (f" (smallest error {ratio:.2g}x above; 10x asked)" if ratio else "")
+                stopping = front.get("reference", {}).get("stopping")
+                if stopping:
+                    label += f"\nreference stopped by {stopping.get('stopped_by', '?')}"
                 ax.axhline(floor, color="tab:blue", ls="--", lw=1, label=label)
             ax.set_xscale("log")
             ax.set_yscale("log")
@@ -693,8 +699,6 @@ def plot_fronts(doc, out_dir):
             made_by = f"{ref.get('integrator', '')} {json.dumps(ref.get('params', {}), separators=(',', ':'))}"
             if ref.get("analytic"):
                 made_by = f"the {ref['analytic']}'s closed form (floor 0)"
-            elif ref.get("stopping"):
-                made_by += f", stopped by {ref['stopping'].get('stopped_by', '?')}"
             ax.set_title(f"{scene}: {' x '.join(knobs)}\nreference {made_by}", fontsize=8)
             ax.grid(True, which="both", alpha=0.25)
             ax.legend(fontsize=7, loc="best")
@@ -703,7 +707,9 @@ def plot_fronts(doc, out_dir):
         integrator = doc["sweep"].get("integrator", "whitted")
         fig.suptitle(f"Speed/accuracy fronts, {integrator} on {scene} ({setting})", fontsize=10)
         fig.tight_layout()
-        save(fig, out_dir, f"fronts_{scene}" if integrator == "whitted" else f"fronts_{integrator}_{scene}")
+        # A front comes from one results file: its machine alone.
+        save(fig, out_dir, f"fronts_{scene}" if integrator == "whitted" else f"fronts_{integrator}_{scene}",
+             machine_note([doc.get("machine", {})]))
         drawn.append(scene)
     return drawn
 
