@@ -219,9 +219,8 @@ tracer::RenderResult render_ppm(const tracer::Scene& scene, const accel::AnyAcce
 
   // The image after `passes` passes of the points' `states`: direct light plus, at every visible
   // point, weight x tau / (pi R^2 passes).
-  const tracer::Image direct = result.image;
-  const auto compose = [&](const std::vector<PointState>& states, int passes) {
-    tracer::Image image = direct;
+  tracer::Image direct = std::move(result.image);
+  const auto compose = [&](tracer::Image image, const std::vector<PointState>& states, int passes) {
     for (std::size_t i = 0; i < points.size(); ++i) {
       const VisiblePoint& v = points[i];
       const DColor e = states[i].tau / (std::numbers::pi * states[i].r2 * double(passes));
@@ -239,7 +238,7 @@ tracer::RenderResult render_ppm(const tracer::Scene& scene, const accel::AnyAcce
   for (int pass = 0; pass < params.passes; ++pass) {
     if (next_checkpoint < checkpoints.size() && checkpoints[next_checkpoint] == pass) {
       // A render stopped here would compose the same state with the same pass count.
-      result.checkpoints.emplace_back(pass, compose(state, pass));
+      result.checkpoints.emplace_back(pass, compose(direct, state, pass));
       ++next_checkpoint;
     }
     PhotonMap maps[2];
@@ -279,7 +278,7 @@ tracer::RenderResult render_ppm(const tracer::Scene& scene, const accel::AnyAcce
   }
 
   // 3. The image.
-  result.image = compose(state, params.passes);
+  result.image = compose(std::move(direct), state, params.passes);  // the direct image is not needed after
   double mean_radius = 0.0;
   for (const PointState& s : state) mean_radius += std::sqrt(s.r2);
   result.rays.photon = photon_rays;
