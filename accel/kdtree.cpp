@@ -27,6 +27,10 @@ const knobs::KnobTable<KdTreeParams>& KdTreeParams::knobs() {
            .shorthand()
            .variant()
            .crossed(),
+       K::choice("split_candidates", &KdTreeParams::split_candidates,
+                 {{"boxes", SplitCandidates::Boxes}, {"clipped", SplitCandidates::Clipped}},
+                 "Where the SAH looks for planes: the faces of the primitives' boxes (pbrt-v3), or of "
+                 "their parts clipped to the cell (triangles; Havran's perfect splits); split sah only."),
        K::number("traversal_cost", &KdTreeParams::traversal_cost, 0.0, 1e6, "SAH cost units",
                  "SAH cost of one traversal step (pbrt-v3: 1); split sah only.")
            .probes({0.0, 1e6}),

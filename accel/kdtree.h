@@ -36,6 +36,15 @@ enum class SplitRule : std::uint8_t {
   Sah,
 };
 
+/// Where the SAH kd-tree looks for split planes.
+enum class SplitCandidates : std::uint8_t {
+  /// The faces of each primitive's bounding box (pbrt-v3).
+  Boxes,
+  /// The faces of the box around each primitive's part inside the cell: a triangle clipped to
+  /// the cell (Havran's "perfect splits"); other primitives keep their boxes.
+  Clipped,
+};
+
 /// Knobs of the kd-tree. The defaults are the paper's midpoint rule and pbrt-v3's SAH cost
 /// model with costs fitted to our sphere test; depth 24 is about pbrt-v3's 8 + 1.3 log2(N) for the
 /// 8000-sphere scene, and leaves of 4 trace faster there than leaves of 1 or 2 (a sphere test
@@ -55,6 +64,8 @@ struct KdTreeParams {
   Placement placement = Placement::Leaves;
   /// How split planes are chosen.
   SplitRule split = SplitRule::Midpoint;
+  /// Where the SAH looks for split planes (split sah only).
+  SplitCandidates split_candidates = SplitCandidates::Clipped;
   /// SAH cost of one traversal step, in the same units as intersection_cost (pbrt-v3: 1).
   float traversal_cost = 1.0f;
   /// SAH cost of one primitive test, fitted for a sphere test (pbrt-v3: 80).

@@ -37,7 +37,7 @@ class KdTreeBuilder {
     for (std::uint32_t i = 0; i < n; ++i) work_.push_back(i);
     budget_.reserve_more(side_, n);
     side_.resize(n);
-    if (params_.split == SplitRule::Sah) sah_.emplace(boxes_, params_, budget_);
+    if (params_.split == SplitRule::Sah) sah_.emplace(boxes_, params_, overlap_, budget_);
     const float root_area = bounds.half_area();
     inv_root_area_ = root_area > 0.0f ? 1.0 / double(root_area) : 0.0;
     build(0, bounds, 0, n, 0);

@@ -5,8 +5,15 @@
 namespace accel {
 
 KdSahSplitter::KdSahSplitter(std::span<const Aabb> boxes, const KdTreeParams& params,
-                             BuildBudget& budget)
-    : boxes_(boxes), params_(params) {
+                             const PrimitiveOverlap& overlap, BuildBudget& budget)
+    : boxes_(boxes),
+      params_(params),
+      overlap_(overlap),
+      clipped_(params.split_candidates == SplitCandidates::Clipped && overlap.clip != nullptr) {
+  if (clipped_) {
+    budget.reserve_more(parts_, boxes.size());
+    parts_.resize(boxes.size());
+  }
   for (std::vector<Edge>& e : edges_) {
     budget.reserve_more(e, 2 * boxes.size());
     e.resize(2 * boxes.size());
@@ -22,6 +29,9 @@ bool KdSahSplitter::find(const Aabb& cell, std::span<const std::uint32_t> prims,
   const Vec3 d = cell.extent();
   const bool every_level = params_.placement == Placement::EveryLevel;
   const float leaf_cost = params_.intersection_cost * float(n);
+  if (clipped_)
+    for (std::size_t i = 0; i < n; ++i) parts_[i] = overlap_.part(prims[i], boxes_[prims[i]], cell);
+  const auto box_of = [&](std::size_t i) -> const Aabb& { return clipped_ ? parts_[i] : boxes_[prims[i]]; };
 
   int best_axis = -1;
   std::size_t best_offset = 0;
@@ -31,8 +41,8 @@ bool KdSahSplitter::find(const Aabb& cell, std::span<const std::uint32_t> prims,
     Edge* edges = edges_[axis].data();
     for (std::size_t i = 0; i < n; ++i) {
       const std::uint32_t p = prims[i];
-      edges[2 * i] = {boxes_[p].lo[axis], p << 1};
-      edges[2 * i + 1] = {boxes_[p].hi[axis], (p << 1) | 1u};
+      edges[2 * i] = {box_of(i).lo[axis], p << 1};
+      edges[2 * i + 1] = {box_of(i).hi[axis], (p << 1) | 1u};
     }
     // At equal coordinates lower faces come first, as in pbrt-v3.
     std::sort(edges, edges + 2 * n, [](const Edge& a, const Edge& b) {

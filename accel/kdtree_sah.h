@@ -1,10 +1,12 @@
 #pragma once
-// The kd-tree's SAH split search (pbrt-v3's sweep over the primitive box faces), used by the
-// kd-tree builder when the split rule is `sah`.
+// The kd-tree's SAH split search (pbrt-v3's sweep over the primitive box faces, or over the faces
+// of the primitives' parts clipped to the cell), used by the kd-tree builder when the split rule
+// is `sah`.
 
 #include "build_budget.h"
 #include "geometry.h"
 #include "kdtree.h"
+#include "primitive_overlap.h"
 
 #include <cstdint>
 #include <span>
@@ -23,8 +25,10 @@ inline constexpr std::uint8_t kBelow = 1, kAbove = 2;
 
 class KdSahSplitter {
  public:
-  /// Sizes the edge arrays for `boxes` through `budget` (6 floats-and-ids per primitive).
-  KdSahSplitter(std::span<const Aabb> boxes, const KdTreeParams& params, BuildBudget& budget);
+  /// Sizes the edge arrays for `boxes` through `budget` (6 floats-and-ids per primitive, and a
+  /// box per primitive when the candidates are clipped by `overlap`).
+  KdSahSplitter(std::span<const Aabb> boxes, const KdTreeParams& params, const PrimitiveOverlap& overlap,
+                BuildBudget& budget);
 
   /// The cheapest split of `cell` over `prims`, with their sides OR-ed into side[prim id]; or
   /// false when a leaf is cheaper (pbrt-v3's rule, which allows three splits on a path that
@@ -41,6 +45,9 @@ class KdSahSplitter {
 
   std::span<const Aabb> boxes_;
   const KdTreeParams& params_;
+  const PrimitiveOverlap& overlap_;
+  bool clipped_;             ///< Candidates from the parts inside the cell (parts_).
+  std::vector<Aabb> parts_;  ///< Per position in `prims`: the primitive's part inside the cell.
   std::vector<Edge> edges_[3];
 };
 

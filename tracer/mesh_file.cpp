@@ -205,7 +205,7 @@ MeshData parse_mesh(std::string_view bytes, MeshFormat format, const std::string
 
 MeshData load_mesh_file(const std::string& path, std::uint64_t max_memory_bytes) {
   const MeshFormat format = mesh_format_of(path);
-  const std::uint64_t budget = accel::memory_budget_bytes(accel::BuildLimits{max_memory_bytes});
+  const std::uint64_t budget = accel::memory_budget_bytes(accel::BuildLimits{.max_memory_bytes = max_memory_bytes, .overlap = {}});
   std::error_code ec;
   const auto status = std::filesystem::status(path, ec);
   if (ec || !std::filesystem::exists(status)) throw SceneError(path + ": no such file");

@@ -39,22 +39,75 @@ bool triangle_touches_box(const Triangle& tri, const accel::Aabb& cell, double m
   return true;
 }
 
+bool clip_triangle_to_box(const Triangle& tri, const accel::Aabb& cell, double margin, accel::Aabb& part) {
+  // A triangle clipped by six planes has at most 9 vertices.
+  glm::dvec3 poly[9] = {glm::dvec3(tri.p0), glm::dvec3(tri.p1), glm::dvec3(tri.p2)};
+  glm::dvec3 next[9];
+  int count = 3;
+  for (int axis = 0; axis < 3 && count > 0; ++axis)
+    for (int side = 0; side < 2 && count > 0; ++side) {
+      // Keep sign * (x - plane) >= 0: x >= lo - margin, then x <= hi + margin.
+      const double sign = side == 0 ? 1.0 : -1.0;
+      const double plane = side == 0 ? double(cell.lo[axis]) - margin : double(cell.hi[axis]) + margin;
+      int kept = 0;
+      for (int i = 0; i < count; ++i) {
+        const glm::dvec3& a = poly[i];
+        const glm::dvec3& b = poly[(i + 1) % count];
+        const double da = sign * (a[axis] - plane), db = sign * (b[axis] - plane);
+        if (da >= 0.0) next[kept++] = a;
+        if ((da >= 0.0) != (db >= 0.0)) {
+          glm::dvec3 x = a + (b - a) * (da / (da - db));
+          x[axis] = plane;  // exactly on the plane, whatever the rounding of the interpolation
+          next[kept++] = x;
+        }
+      }
+      std::copy(next, next + kept, poly);
+      count = kept;
+    }
+  if (count == 0) return false;
+  glm::dvec3 lo = poly[0], hi = poly[0];
+  for (int i = 1; i < count; ++i) {
+    lo = glm::min(lo, poly[i]);
+    hi = glm::max(hi, poly[i]);
+  }
+  // The margin (2^-16 of the cell's scale where the trees call this) dwarfs the rounding of the
+  // interpolation and of the conversion to float.
+  part = {accel::Vec3(lo - margin), accel::Vec3(hi + margin)};
+  return true;
+}
+
 namespace {
+
+/// The overlap margin for `cell`: 2^-16 of its size and of its distance from the origin.
+double margin_of(const accel::Aabb& cell) {
+  const double size = double(std::max({cell.hi.x - cell.lo.x, cell.hi.y - cell.lo.y, cell.hi.z - cell.lo.z}));
+  const double far = double(std::max({std::abs(cell.lo.x), std::abs(cell.lo.y), std::abs(cell.lo.z),
+                                      std::abs(cell.hi.x), std::abs(cell.hi.y), std::abs(cell.hi.z)}));
+  return 0x1p-16 * (size + far);
+}
 
 bool touches(const void* context, std::uint32_t id, const accel::Aabb& cell) {
   const Geometry& g = *static_cast<const Geometry*>(context);
   if (g.kind_of(id) != PrimitiveKind::Triangle) return true;
-  const double size = double(std::max({cell.hi.x - cell.lo.x, cell.hi.y - cell.lo.y, cell.hi.z - cell.lo.z}));
-  const double far = double(std::max({std::abs(cell.lo.x), std::abs(cell.lo.y), std::abs(cell.lo.z),
-                                      std::abs(cell.hi.x), std::abs(cell.hi.y), std::abs(cell.hi.z)}));
-  return triangle_touches_box(g.triangles[id - g.first_id[1]], cell, 0x1p-16 * (size + far));
+  return triangle_touches_box(g.triangles[id - g.first_id[1]], cell, margin_of(cell));
+}
+
+accel::Aabb clip(const void* context, std::uint32_t id, const accel::Aabb& box, const accel::Aabb& cell) {
+  const accel::Aabb in_cell{glm::max(box.lo, cell.lo), glm::min(box.hi, cell.hi)};
+  const Geometry& g = *static_cast<const Geometry*>(context);
+  if (g.kind_of(id) != PrimitiveKind::Triangle) return in_cell;
+  accel::Aabb part;
+  // touches() may keep a triangle that the clip finds outside the widened cell (its margins
+  // differ slightly); the box then stands.
+  if (!clip_triangle_to_box(g.triangles[id - g.first_id[1]], cell, margin_of(cell), part)) return in_cell;
+  return {glm::max(part.lo, in_cell.lo), glm::min(part.hi, in_cell.hi)};
 }
 
 }  // namespace
 
 accel::PrimitiveOverlap primitive_overlap(const Geometry& geometry) {
   if (geometry.triangles.empty()) return {};
-  return {&geometry, touches};
+  return {&geometry, touches, clip};
 }
 
 }  // namespace tracer
