@@ -262,34 +262,38 @@ class Knob {
 
   /// Throws ConfigError when `v` is not an acceptable value of this knob.
   void check(const nlohmann::json& v, std::string_view owner) const {
+    const std::string why = why_not(v);
+    if (!why.empty()) fail(owner, why);
+  }
+
+  /// Why `v` is not an acceptable value of this knob ("must be ..., got ..."); "" when it is.
+  std::string why_not(const nlohmann::json& v) const {
     switch (type_) {
       case KnobType::Integer: {
-        if (!v.is_number_integer()) fail_type(owner, "an integer", v);
+        if (!v.is_number_integer()) return must_be("an integer", v);
         const bool in_range = v.is_number_unsigned()
                                   ? v.get<std::uint64_t>() <= ihi_ &&
                                         (ilo_ <= 0 || v.get<std::uint64_t>() >= std::uint64_t(ilo_))
                                   : v.get<long long>() >= ilo_ &&
                                         (v.get<long long>() < 0 || std::uint64_t(v.get<long long>()) <= ihi_);
-        if (!in_range) fail_range(owner, v);
-        return;
+        return in_range ? "" : out_of_range(v);
       }
       case KnobType::Number: {
-        if (!word_.empty() && v.is_string() && v.get<std::string>() == word_) return;
-        if (!v.is_number()) fail_type(owner, word_.empty() ? "a number" : "a number or \"" + word_ + "\"", v);
+        if (!word_.empty() && v.is_string() && v.get<std::string>() == word_) return "";
+        if (!v.is_number()) return must_be(word_.empty() ? "a number" : "a number or \"" + word_ + "\"", v);
         const double x = v.get<double>();
-        if (!(open_below_ ? x > lo_ : x >= lo_) || !(x <= hi_)) fail_range(owner, v);
-        return;
+        return (open_below_ ? x > lo_ : x >= lo_) && x <= hi_ ? "" : out_of_range(v);
       }
       case KnobType::Boolean:
-        if (!v.is_boolean()) fail_type(owner, "true or false", v);
-        return;
+        return v.is_boolean() ? "" : must_be("true or false", v);
       case KnobType::Choice: {
         if (v.is_string() || v.is_number_integer())
           for (const std::string& c : choices_)
-            if (choice_spelling(v) == c) return;
-        fail(owner, "must be one of " + choice_text() + ", got " + v.dump());
+            if (choice_spelling(v) == c) return "";
+        return "must be one of " + choice_text() + ", got " + v.dump();
       }
     }
+    return "";
   }
 
   /// Whether the knob's value in `p` is acceptable: check() without building JSON, cheap
@@ -397,13 +401,12 @@ class Knob {
   [[noreturn]] void fail(std::string_view owner, const std::string& what) const {
     throw ConfigError(std::string(owner) + ": knob '" + name_ + "' " + what);
   }
-  [[noreturn]] void fail_type(std::string_view owner, const std::string& want, const nlohmann::json& v) const {
-    fail(owner, std::string("must be ") + want + ", got " + value_text(v));
+  static std::string must_be(const std::string& want, const nlohmann::json& v) {
+    return "must be " + want + ", got " + value_text(v);
   }
-  [[noreturn]] void fail_range(std::string_view owner, const nlohmann::json& v) const {
+  std::string out_of_range(const nlohmann::json& v) const {
     const std::string range = range_text();
-    fail(owner, "must be " + std::string(range[0] == '[' || range[0] == '(' ? "in " : "") + range + ", got " +
-                    value_text(v));
+    return must_be(std::string(range[0] == '[' || range[0] == '(' ? "in " : "") + range, v);
   }
   /// A value as JSON, a non-finite number (from a struct filled in code) as nan or inf.
   static std::string value_text(const nlohmann::json& v) {

@@ -9,6 +9,7 @@
 #include "photon/density.h"
 #include "photon/knn.h"
 #include "photon/photon_tree_params.h"
+#include "tracer/scene.h"
 
 #include <gtest/gtest.h>
 
@@ -23,7 +24,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-/// Every knob name of every table: the structures', the integrators' and the photon maps'.
+/// Every knob name of every table: the structures', the integrators', the photon maps' and the
+/// scene file's render settings.
 std::set<std::string> all_knob_names() {
   std::set<std::string> names;
   for (const accel::StructureInfo& s : accel::structures())
@@ -31,7 +33,8 @@ std::set<std::string> all_knob_names() {
   for (const tracer::Integrator* i : integrators::all())
     for (const std::string& k : i->knob_table().names()) names.insert(k);
   for (const knobs::AnyKnobTable* t : std::initializer_list<const knobs::AnyKnobTable*>{
-           &photon::PhotonTreeParams::knobs(), &photon::GatherParams::knobs(), &photon::DensityParams::knobs()})
+           &photon::PhotonTreeParams::knobs(), &photon::GatherParams::knobs(), &photon::DensityParams::knobs(),
+           &tracer::RenderSettings::knobs()})
     for (const std::string& k : t->names()) names.insert(k);
   return names;
 }
@@ -64,8 +67,6 @@ std::map<std::string, std::string> sources() {
 /// Literals that share a knob's name without being the knob, by file, with why.
 const std::map<std::pair<std::string, std::string>, const char*>& not_the_knob() {
   static const std::map<std::pair<std::string, std::string>, const char*> m = {
-      {{"tracer/scene_json.cpp", "max_depth"}, "the scene file's render.max_depth, which the whitted knob overrides"},
-      {{"tracer/scene_json.cpp", "min_weight"}, "the scene file's render.min_weight, which the whitted knob overrides"},
       {{"photon/photon_integrator.cpp", "max_radius"}, "the radius in effect, in the render statistics"},
       {{"photon/photon_integrator.cpp", "global_photons"}, "the memory-budget error names the knob to lower"},
       {{"photon/photon_integrator.cpp", "caustic_photons"}, "the memory-budget error names the knob to lower"},

@@ -179,6 +179,25 @@ TEST(Registry, BenchmarksCoverEveryBuiltStructure) {
 #endif
 }
 
+// Every generator and every integrator has its whole-render benchmark (bench/bench_render.cpp),
+// the mesh generators where the shared models are.
+TEST(Registry, BenchmarksCoverEveryGeneratorAndIntegrator) {
+#ifdef ACCELBENCH_BENCH_RENDER
+  ProcessRun list = run(std::string(ACCELBENCH_BENCH_RENDER) + " --benchmark_list_tests=true 2>&1");
+  ASSERT_EQ(list.status, 0) << list.output;
+  list.output = "\n" + list.output;
+  const bool meshes = list.output.find("\nGenerator/mesh/") != std::string::npos;
+  if (!meshes) std::printf("no mesh generator rows (the shared models are absent)\n");
+  for (const std::string& n : scenes_gen::generator_names())
+    if (meshes || !scenes_gen::generator_takes_model(n))
+      EXPECT_NE(list.output.find("\nGenerator/" + n + "/"), std::string::npos) << n;
+  for (const tracer::Integrator* i : integrators::all())
+    EXPECT_NE(list.output.find("\nIntegrator/" + std::string(i->name) + "/cornell/"), std::string::npos) << i->name;
+#else
+  GTEST_SKIP() << "bench_render is not built (ACCELBENCH_BENCHMARKS=OFF)";
+#endif
+}
+
 // The paired render benchmark validates both structures, renders both, and reports the peer's time
 // over the structure's as a counter (one render of spheres8000 at 1024x768 each, about a second).
 TEST(Registry, RenderPairReportsThePeersTimeOverOurs) {

@@ -137,7 +137,7 @@ TEST(SceneJson, EveryBadValueNamesItsPath) {
       {"/meshes/0/normals/3", json::array({0, 0, 0}),
        "/meshes/0/normals/3: must be a non-zero vector, got [0,0,0]"},
       {"/render/max_depth", 0, "/render/max_depth: must be in [1, 1000], got 0"},
-      {"/render/min_weight", 2, "/render/min_weight: must be in [0, 1], got 2"},
+      {"/render/min_weight", 2, "/render/min_weight: must be in [0.0, 1.0], got 2"},
       {"/render/max_depth", 2.5, "/render/max_depth: must be an integer, got 2.5"},
   };
   for (const BadCase& c : cases) {
@@ -149,6 +149,19 @@ TEST(SceneJson, EveryBadValueNamesItsPath) {
       doc[ptr] = c.value;
     EXPECT_EQ(error_of(doc), c.message) << "at " << c.pointer;
   }
+}
+
+// The render object is a knob table: the scene reader, the writer and the docs table come from it.
+TEST(SceneJson, TheRenderObjectIsItsKnobTable) {
+  json doc = valid_scene();
+  doc["render"] = {{"maxdepth", 3}};
+  EXPECT_EQ(error_of(doc), "/render/maxdepth: unknown key in render settings; did you mean 'max_depth'?");
+  const tracer::Scene s = tracer::scene_from_json(valid_scene());
+  EXPECT_EQ(tracer::scene_to_json(s)["render"], tracer::RenderSettings::knobs().to_json(s.render));
+  std::ifstream in(ACCELBENCH_SOURCE_DIR "/docs/scene-format.md");
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find(tracer::RenderSettings::knobs().markdown()), std::string::npos)
+      << "docs/scene-format.md: put this table under `render`:\n" << tracer::RenderSettings::knobs().markdown();
 }
 
 TEST(SceneJson, NaNsAreRejectedWhereTheyStand) {

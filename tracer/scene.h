@@ -5,6 +5,8 @@
 #include "mesh_instance.h"
 #include "scene_geometry.h"
 
+#include "knobs/knob_table.h"
+
 #include <glm/vec3.hpp>
 #include <nlohmann/json.hpp>
 
@@ -52,9 +54,13 @@ struct Material {
   float transmittance = 0.0f;          ///< Nff: weight of the refracted ray (NFF T), >= 0; ior used when > 0.
 };
 
+/// The scene file's "render" object: the recursion limits a render without knobs uses.
 struct RenderSettings {
   int max_depth = 8;            ///< Maximum recursion depth; the camera ray is depth 1.
   float min_weight = 1e-3f;     ///< Rays whose path weight falls below this are not traced.
+
+  /// Name, range, unit and doc line of both: the scene file's reader and writer and the docs.
+  static const knobs::KnobTable<RenderSettings>& knobs();
 };
 
 /// The integrator a scene asks for, and its knobs. The tracer only stores them: the integrator

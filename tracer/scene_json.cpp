@@ -325,13 +325,33 @@ Material read_material(const json& v, const std::string& path) {
   return m;
 }
 
+}  // namespace
+
+const knobs::KnobTable<RenderSettings>& RenderSettings::knobs() {
+  using K = knobs::Knob<RenderSettings>;
+  static const knobs::KnobTable<RenderSettings> table(
+      "render",
+      {K::integer("max_depth", &RenderSettings::max_depth, 1, 1000, "rays",
+                  "Longest chain of rays; the camera ray is depth 1."),
+       K::number("min_weight", &RenderSettings::min_weight, 0.0, 1.0, "fraction",
+                 "A reflected or refracted ray whose path weight (largest channel of the product of the "
+                 "reflectances, Fresnel weights and absorption along its path) falls below this is not traced.")});
+  return table;
+}
+
+namespace {
+
 RenderSettings read_render(const json& v, const std::string& path) {
-  const Object o(v, path, {"max_depth", "min_weight"}, "render settings");
+  const knobs::KnobTable<RenderSettings>& table = RenderSettings::knobs();
+  const std::vector<std::string> names = table.names();
+  const Object o(v, path, std::vector<std::string_view>(names.begin(), names.end()), "render settings");
   RenderSettings r;
-  o.integer("max_depth", r.max_depth);
-  o.expect("max_depth", r.max_depth >= 1 && r.max_depth <= 1000, "in [1, 1000]");
-  o.number("min_weight", r.min_weight);
-  o.expect("min_weight", r.min_weight >= 0.0f && r.min_weight <= 1.0f, "in [0, 1]");
+  for (const auto& [key, value] : v.items()) {
+    const knobs::Knob<RenderSettings>& k = *table.find(key);
+    const std::string why = k.why_not(value);
+    if (!why.empty()) fail(o.path(key), why);
+    k.set(r, value, table.owner());
+  }
   return r;
 }
 
@@ -685,8 +705,7 @@ json scene_to_json(const Scene& scene) {
                  {"hither", number(c.hither)},
                  {"left_handed", c.left_handed}};
   j["background"] = vec(scene.background);
-  j["render"] = {{"max_depth", scene.render.max_depth},
-                 {"min_weight", number(scene.render.min_weight)}};
+  j["render"] = RenderSettings::knobs().to_json(scene.render);
   if (!scene.integrator.name.empty()) {
     json integrator = scene.integrator.knobs.is_object() ? scene.integrator.knobs : json::object();
     integrator["name"] = scene.integrator.name;
