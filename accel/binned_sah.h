@@ -180,6 +180,9 @@ class BinnedSah {
       r.add_parts(xsimd::select(to_left, inf, lo), xsimd::select(to_left, minus_inf, hi),
                   xsimd::select(to_left, inf, c), xsimd::select(to_left, minus_inf, c));
     }
+    // find() only offers planes with boxes on both sides; should the binning here ever disagree,
+    // an empty side would make a chain of empty nodes, so the range is halved instead.
+    if (first == begin || first == end) return partition(begin, end, centroids, Split{}, left, right);
     left = l.bounds();
     right = r.bounds();
     return first;

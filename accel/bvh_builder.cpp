@@ -85,9 +85,11 @@ class Builder {
       build_node(c, left + 1, mid, end, depth + 1, right_bounds, tally);
       return;
     }
-    // Each child's subtree in a slab of its own (2 nodes per primitive bound any subtree).
+    // Each child's subtree in a slab of its own. A child over m primitives has at most 2(m - 1)
+    // descendants (every inner node two children, every leaf a primitive), which with the two
+    // children allocated above is this node's own bound, 2(count - 1): the slabs never overlap.
     slabs_.close_run(c);
-    Slabs::Cursor lc = slabs_.carve(c, 2 * (mid - begin)), rc = slabs_.carve(c, 2 * (end - mid));
+    Slabs::Cursor lc = slabs_.carve(c, 2 * (mid - begin - 1)), rc = slabs_.carve(c, 2 * (end - mid - 1));
     BuildTally lt, rt;
     tbb::parallel_invoke(
         [&] {

@@ -133,26 +133,32 @@ void expect_depth_first(std::span<const accel::BvhNode> nodes, std::uint32_t nod
 
 TEST(Bvh, TheTreeIsTheSameAtAnyThreadCount) {
   // Large enough that ranges fork into tasks (accel/build_tasks.h) many levels deep and the
-  // first passes bin in parallel.
+  // first passes bin in parallel. Leaves of one primitive make the most nodes a tree can have
+  // (2n - 1), which the tasks' node slabs must hold without overlapping.
   const auto boxes = random_boxes(60'000, 9);
-  BvhParams one;
-  const Bvh reference(boxes, one);
-  check_tree(reference, boxes, one);
-  std::uint32_t next_pair = 2;
-  expect_depth_first(reference.nodes(), 0, next_pair);
-  EXPECT_EQ(next_pair, reference.nodes().size());
-  for (int threads : {2, 3, 0}) {
-    SCOPED_TRACE(threads);
-    BvhParams p;
-    p.build_threads = threads;
-    const Bvh bvh(boxes, p);
-    ASSERT_EQ(bvh.nodes().size(), reference.nodes().size());
-    EXPECT_EQ(std::memcmp(bvh.nodes().data(), reference.nodes().data(), reference.nodes().size_bytes()), 0);
-    EXPECT_TRUE(std::ranges::equal(bvh.prim_ids(), reference.prim_ids()));
-    EXPECT_EQ(bvh.stats().sah_cost, reference.stats().sah_cost);
-    EXPECT_EQ(bvh.stats().leaves, reference.stats().leaves);
-    EXPECT_EQ(bvh.stats().max_depth_reached, reference.stats().max_depth_reached);
-    EXPECT_EQ(bvh.stats().max_leaf_prims, reference.stats().max_leaf_prims);
+  for (int leaf : {4, 1}) {
+    SCOPED_TRACE(testing::Message() << "max_leaf_size " << leaf);
+    BvhParams one;
+    one.max_leaf_size = leaf;
+    const Bvh reference(boxes, one);
+    check_tree(reference, boxes, one);
+    std::uint32_t next_pair = 2;
+    expect_depth_first(reference.nodes(), 0, next_pair);
+    EXPECT_EQ(next_pair, reference.nodes().size());
+    if (leaf == 1) EXPECT_EQ(reference.stats().nodes, 2 * boxes.size() - 1);
+    for (int threads : {2, 3, 0}) {
+      SCOPED_TRACE(threads);
+      BvhParams p = one;
+      p.build_threads = threads;
+      const Bvh bvh(boxes, p);
+      ASSERT_EQ(bvh.nodes().size(), reference.nodes().size());
+      EXPECT_EQ(std::memcmp(bvh.nodes().data(), reference.nodes().data(), reference.nodes().size_bytes()), 0);
+      EXPECT_TRUE(std::ranges::equal(bvh.prim_ids(), reference.prim_ids()));
+      EXPECT_EQ(bvh.stats().sah_cost, reference.stats().sah_cost);
+      EXPECT_EQ(bvh.stats().leaves, reference.stats().leaves);
+      EXPECT_EQ(bvh.stats().max_depth_reached, reference.stats().max_depth_reached);
+      EXPECT_EQ(bvh.stats().max_leaf_prims, reference.stats().max_leaf_prims);
+    }
   }
 }
 

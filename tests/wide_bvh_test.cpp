@@ -275,25 +275,30 @@ void expect_depth_first(std::span<const accel::WideNode<W>> nodes, std::uint32_t
 template <int W>
 void same_tree_at_any_thread_count() {
   // Large enough that ranges fork into tasks (accel/build_tasks.h) several levels deep and the
-  // first passes bin in parallel.
+  // first passes bin in parallel; leaves of one primitive make the most nodes, which the tasks'
+  // node slabs must hold without overlapping.
   const auto boxes = random_boxes(60'000, 13, 20.0f);
-  const accel::WideBvhParams<W> one;
-  const accel::WideBvh<W> reference(boxes, one);
-  check_tree(reference, boxes, one);
-  std::uint32_t next = 1;
-  expect_depth_first<W>(reference.nodes(), 0, next);
-  EXPECT_EQ(next, reference.nodes().size());
-  for (int threads : {2, 3, 0}) {
-    SCOPED_TRACE(threads);
-    accel::WideBvhParams<W> p;
-    p.build_threads = threads;
-    const accel::WideBvh<W> bvh(boxes, p);
-    ASSERT_EQ(bvh.nodes().size(), reference.nodes().size());
-    EXPECT_EQ(std::memcmp(bvh.nodes().data(), reference.nodes().data(), reference.nodes().size_bytes()), 0);
-    EXPECT_TRUE(std::ranges::equal(bvh.prim_ids(), reference.prim_ids()));
-    EXPECT_EQ(bvh.stats().sah_cost, reference.stats().sah_cost);
-    EXPECT_EQ(bvh.stats().leaves, reference.stats().leaves);
-    EXPECT_EQ(bvh.stats().max_depth_reached, reference.stats().max_depth_reached);
+  for (int leaf : {accel::WideBvhParams<W>{}.max_leaf_size, 1}) {
+    SCOPED_TRACE(testing::Message() << "max_leaf_size " << leaf);
+    accel::WideBvhParams<W> one;
+    one.max_leaf_size = leaf;
+    const accel::WideBvh<W> reference(boxes, one);
+    check_tree(reference, boxes, one);
+    std::uint32_t next = 1;
+    expect_depth_first<W>(reference.nodes(), 0, next);
+    EXPECT_EQ(next, reference.nodes().size());
+    for (int threads : {2, 3, 0}) {
+      SCOPED_TRACE(threads);
+      accel::WideBvhParams<W> p = one;
+      p.build_threads = threads;
+      const accel::WideBvh<W> bvh(boxes, p);
+      ASSERT_EQ(bvh.nodes().size(), reference.nodes().size());
+      EXPECT_EQ(std::memcmp(bvh.nodes().data(), reference.nodes().data(), reference.nodes().size_bytes()), 0);
+      EXPECT_TRUE(std::ranges::equal(bvh.prim_ids(), reference.prim_ids()));
+      EXPECT_EQ(bvh.stats().sah_cost, reference.stats().sah_cost);
+      EXPECT_EQ(bvh.stats().leaves, reference.stats().leaves);
+      EXPECT_EQ(bvh.stats().max_depth_reached, reference.stats().max_depth_reached);
+    }
   }
 }
 

@@ -161,7 +161,9 @@ class WideBuilder {
     int count = 0;
     for (int i = 0; i < k; ++i) {
       if (kids[i].leaf) continue;
-      tasks[count] = {i, first_inner + std::uint32_t(count), slabs_.carve(c, kids[i].end - kids[i].begin), {}};
+      // An inner child over m >= 2 primitives has at most m - 2 inner descendants (fewer than m
+      // inner nodes, itself included), so the slabs of all children fit this node's own bound.
+      tasks[count] = {i, first_inner + std::uint32_t(count), slabs_.carve(c, kids[i].end - kids[i].begin - 2), {}};
       ++count;
     }
     tbb::parallel_for(0, count, [&](int t) {
