@@ -40,12 +40,21 @@ bool triangle_touches_box(const Triangle& tri, const accel::Aabb& cell, double m
 }
 
 bool clip_triangle_to_box(const Triangle& tri, const accel::Aabb& cell, double margin, accel::Aabb& part) {
-  // A triangle clipped by six planes has at most 9 vertices.
-  glm::dvec3 poly[9] = {glm::dvec3(tri.p0), glm::dvec3(tri.p1), glm::dvec3(tri.p2)};
-  glm::dvec3 next[9];
+  // A triangle clipped by six planes has at most 9 vertices in exact arithmetic; rounding can make
+  // a polygon whose edge lies in a plane cross it more than twice, so the arrays have room to
+  // spare, and a polygon that would outgrow them keeps the triangle's whole box (conservative).
+  constexpr int kRoom = 16;
+  glm::dvec3 poly[kRoom] = {glm::dvec3(tri.p0), glm::dvec3(tri.p1), glm::dvec3(tri.p2)};
+  glm::dvec3 next[kRoom];
   int count = 3;
   for (int axis = 0; axis < 3 && count > 0; ++axis)
     for (int side = 0; side < 2 && count > 0; ++side) {
+      if (2 * count > kRoom) {
+        count = 3;
+        poly[0] = glm::dvec3(tri.p0), poly[1] = glm::dvec3(tri.p1), poly[2] = glm::dvec3(tri.p2);
+        axis = 3;  // stop clipping
+        break;
+      }
       // Keep sign * (x - plane) >= 0: x >= lo - margin, then x <= hi + margin.
       const double sign = side == 0 ? 1.0 : -1.0;
       const double plane = side == 0 ? double(cell.lo[axis]) - margin : double(cell.hi[axis]) + margin;
