@@ -158,10 +158,12 @@ TEST(KdTree, RejectsBadKnobsWithOneLineNamingTheKey) {
   EXPECT_EQ(error_of({{"max_depth", 65}}), "kdtree: knob 'max_depth' must be in [0, 64], got 65");
   EXPECT_EQ(error_of({{"max_depth", -1}}), "kdtree: knob 'max_depth' must be in [0, 64], got -1");
   EXPECT_EQ(error_of({{"leafsize", 4}}), "kdtree: unknown knob 'leafsize' (its knobs: max_depth, max_leaf_size, placement, split, "
-            "traversal_cost, intersection_cost, empty_bonus)");
+            "split_candidates, traversal_cost, intersection_cost, empty_bonus)");
   EXPECT_EQ(error_of({{"max_depth", "8"}}), "kdtree: knob 'max_depth' must be an integer, got \"8\"");
   EXPECT_EQ(error_of({{"split", "median"}}),
             "kdtree: knob 'split' must be one of midpoint|sah, got \"median\"");
+  EXPECT_EQ(error_of({{"split_candidates", "faces"}}),
+            "kdtree: knob 'split_candidates' must be one of boxes|clipped, got \"faces\"");
   EXPECT_EQ(error_of({{"placement", "root"}}),
             "kdtree: knob 'placement' must be one of leaves|every_level, got \"root\"");
   EXPECT_EQ(error_of({{"empty_bonus", 1.5}}), "kdtree: knob 'empty_bonus' must be in [0.0, 1.0], got 1.5");
