@@ -360,10 +360,8 @@ RayData& ray_data(const std::string& scene_name, RaySet set) {
 /// a short secondary ray's t carries an ulp of its origin, a large part of a t near 0.
 constexpr double kToleranceShare = 0.001;
 constexpr double kToleranceT = 1e-5;
-/// Its whole render is validated by the share of pixels more than 1% off naive's: t a few ulps
-/// away moves hit points, and through glass and mirrors whole paths (spheres8000's centre window
-/// through embree_points: 1.3% of pixels). A structure that loses primitives is far beyond it.
-constexpr double kToleranceImage = 0.02;
+/// Its whole render is validated by the share of pixels more than 1% off naive's
+/// (tracer::kPeerPixelsOffShare).
 
 bool is_exact(const std::string& name) {
   const accel::StructureInfo* info = accel::find_structure(name);
@@ -594,7 +592,7 @@ bool build_validated_render(benchmark::State& state, const RenderCase& rc, const
       state.SkipWithError(("validation failed: " + name + "'s centre window differs from naive's render").c_str());
       return false;
     }
-  } else if (!same_size || tracer::compare_images(got, want).fraction_off > kToleranceImage) {
+  } else if (!same_size || tracer::compare_images(got, want).fraction_off > tracer::kPeerPixelsOffShare) {
     ++g_validation_failures;
     state.SkipWithError(("validation failed: more than 2% of " + name +
                          "'s centre window is more than 1% off naive's render").c_str());

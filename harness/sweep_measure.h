@@ -9,7 +9,6 @@
 
 #include "accel/accel.h"
 #include "tracer/image.h"
-#include "tracer/image.h"
 #include "tracer/ray_counts.h"
 #include "tracer/scene.h"
 
@@ -17,6 +16,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string_view>
 #include <span>
@@ -64,6 +64,7 @@ struct MeasureOptions {
   Inspector inspect;             ///< Optional: sees every ok configuration's image (fronts).
   int validate_width = 0;        ///< Resolution of the check against naive; 0 = the timed one.
   int validate_height = 0;       ///< Height of that check, pixels.
+  bool keep_image = false;       ///< Keep the counting pass's image in Prepared::image (naive's).
 };
 
 /// The naive structure's image hash, ray counts and median render time on the same scene, same
@@ -72,6 +73,9 @@ struct Reference {
   std::uint64_t image_hash = 0;   ///< Naive's image hash.
   double render_ms = 0.0;         ///< Naive's median render time, ms.
   tracer::RayCounts rays;         ///< Rays naive's render traced.
+  /// Naive's image, for the structures checked within a tolerance instead of bit for bit
+  /// (accel::StructureInfo::exact false: Embree's own primitives); null: they are held to the hash.
+  std::shared_ptr<const tracer::Image> image;
 };
 
 /// A structure's check against naive at the validation resolution (validate_resolution).
@@ -119,7 +123,7 @@ struct Measurement {
 struct Prepared {
   Measurement m;                       ///< Build and counting pass; m.status Ok means ready to time.
   accel::AnyAccel built;               ///< The structure (when m.built).
-  std::optional<tracer::Image> image;  ///< The counting pass's image, kept for options.inspect.
+  std::optional<tracer::Image> image;  ///< The counting pass's image, kept for options.inspect or keep_image.
 };
 
 /// Builds `structure` with `params` on `scene`, makes the counting pass, checks it against

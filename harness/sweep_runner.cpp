@@ -133,7 +133,7 @@ struct TimeBatch {
       if (naive.status == RowStatus::Ok && complete) {
         // Naive's median over the rounds this row was timed in (every round: naive is in all).
         const auto paired = rounds.paired_wall(0, i);
-        reference = Reference{naive.image_hash, paired.first.empty() ? 0.0 : median_of(paired.first), naive.rays};
+        reference = Reference{naive.image_hash, paired.first.empty() ? 0.0 : median_of(paired.first), naive.rays, nullptr};
       } else if (c.p.m.status == RowStatus::Ok) {
         c.p.m.status = RowStatus::Failed;
         c.p.m.reason = "naive, the reference, failed while being timed: " + naive.reason;
@@ -312,6 +312,7 @@ RunSummary run_sweep(const SweepDefinition& definition, const RunOptions& option
       for (std::size_t i : members)
         if (pending[i].key == naive_key) naive_row = i;
       naive_options.inspect = naive_row && !definition.validates_apart() ? mo.inspect : nullptr;
+      naive_options.keep_image = true;  // the peers' reference (check_against_naive)
 
       // Contender 0 is naive: the reference for validation, and timed in every round.
       std::vector<Contender> batch;
@@ -327,7 +328,8 @@ RunSummary run_sweep(const SweepDefinition& definition, const RunOptions& option
           if (i != naive_row) emit(make_failed_row(pending[i], spec, contender_options, why), pending[i], "failed: " + why);
         continue;
       }
-      const Reference reference{batch[0].p.m.image_hash, 0.0, batch[0].p.m.rays};
+      Reference reference{batch[0].p.m.image_hash, 0.0, batch[0].p.m.rays, nullptr};
+      if (batch[0].p.image) reference.image = std::make_shared<const tracer::Image>(*batch[0].p.image);
       const TimeBatch time_batch{*scene, spec, primitives, naive_options, contender_options, definition, summary, emit, describe,
                                  options.progress};
       const std::uint64_t budget = accel::memory_budget_bytes(mo.limits);

@@ -32,10 +32,13 @@ class RenderTarget : public TuneTarget {
 
   Reference naive() override {
     contenders_.clear();
-    contenders_.push_back(prepare(scene_, boxes_, "naive", json::object(), options_, std::nullopt));
+    MeasureOptions naive_options = options_;
+    naive_options.keep_image = true;  // the peers' reference
+    contenders_.push_back(prepare(scene_, boxes_, "naive", json::object(), naive_options, std::nullopt));
     const Measurement& m = contenders_[0].m;
     if (m.status != RowStatus::Ok) throw SweepError("tune: naive reference failed: " + m.reason);
-    reference_ = Reference{m.image_hash, 0.0, m.rays};
+    reference_ = Reference{m.image_hash, 0.0, m.rays, nullptr};
+    if (contenders_[0].image) reference_.image = std::make_shared<const tracer::Image>(*contenders_[0].image);
     return reference_;
   }
   Measurement search(const json& params) override {
