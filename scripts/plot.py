@@ -307,13 +307,27 @@ def plot_work_per_ray(ax, best, names, x):
     ax.grid(True, axis="y", alpha=0.3)
 
 
+def grid_panel(row):
+    """A heat map panel's name: the row's variant, with any other knob the sweep crossed with the
+    grid (e.g. kdtree's split_candidates), so that rows differing in it never share a cell."""
+    name = row.get("built") or row["structure"]
+    entry = next((e for e in REGISTRY if e["name"] == name), None)
+    variant_names = {k["name"] for k in variant_knobs(entry)} if entry else set()
+    extra = [f"{k}={v}" for k, v in sorted(row.get("requested", {}).items())
+             if k not in ("max_depth", "max_leaf_size") and k not in variant_names]
+    label = variant(row)
+    if not extra:
+        return label
+    return label[:-1] + ", " + ", ".join(extra) + ")" if label.endswith(")") else f"{label} ({', '.join(extra)})"
+
+
 def knob_grid_rows(rows):
-    """scene -> variant -> rows that have both max_depth and max_leaf_size requested."""
+    """scene -> panel (grid_panel) -> rows that have both max_depth and max_leaf_size requested."""
     grid = {}
     for r in rows:
         req = r.get("requested", {})
         if "max_depth" in req and "max_leaf_size" in req:
-            grid.setdefault(r["scene"], {}).setdefault(variant(r), []).append(r)
+            grid.setdefault(r["scene"], {}).setdefault(grid_panel(r), []).append(r)
     return grid
 
 
@@ -329,7 +343,7 @@ def plot_heatmaps(rows, out_dir):
     if not grid:
         return False
     scene = heatmap_scene(grid)
-    variants = sorted(grid[scene], key=order_key)
+    variants = sorted(grid[scene], key=lambda p: (order_key(variant(grid[scene][p][0])), p))
     metrics = [("heatmap_render_ms", "render time (ms)", lambda r: r["render_ms"]["median"]),
                ("heatmap_nodes_per_ray", "nodes visited per ray", lambda r: r["traversal"]["nodes_per_ray"])]
     for name, label, value in metrics:
@@ -491,8 +505,13 @@ def plot_build_vs_trace(rows, out_dir):
         ax.plot(r["build_ms"], r["render_ms"]["median"], "o", color=COLORS.get(v, "grey"), alpha=0.75,
                 markersize=5, label=None if v in seen else v)
         seen.add(v)
+    # Naive's line only where it rendered what the others did: a sweep with a validation
+    # resolution times naive there alone (its time per ray still serves the right panel).
+    main_size = next(((r.get("width"), r.get("height")) for r in ok_rows(rows)
+                      if r["scene"] == main and r["structure"] != "naive"), None)
     naive_ms = next((r["render_ms"]["median"] for r in ok_rows(rows)
-                     if r["scene"] == main and r["structure"] == "naive"), None)
+                     if r["scene"] == main and r["structure"] == "naive"
+                     and (r.get("width"), r.get("height")) == main_size), None)
     if naive_ms:
         ax.axhline(naive_ms, color=COLORS["naive"], linestyle="--", label="naive render time")
     ax.set_xscale("log")
