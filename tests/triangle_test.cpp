@@ -254,16 +254,22 @@ TEST(TriangleBox, TheSeparatingAxisTestDecidesWhereBoxesCannot) {
   EXPECT_FALSE(tracer::triangle_touches_box(tri({1.3f, -0.2f, 0.5f}, {3.0f, 1.5f, 0.5f}, {3.0f, 1.49f, 0.5f}), unit, 0.0));
 }
 
-TEST(TriangleBox, TreesThatDivideSpaceKeepOnlyTheCellsATriangleTouches) {
-  // Long thin diagonal triangles: each box spans the scene, the triangles cross few cells.
+/// `n` long thin triangles in random directions, `half_length` each way from a point in a 10-unit
+/// cube: their boxes span much of the scene, the triangles cross few cells.
+tracer::Geometry long_diagonal_triangles(int n, float half_length) {
   tracer::Geometry g;
   std::mt19937 rng(5);
   std::uniform_real_distribution<float> u(-5.0f, 5.0f);
-  for (int i = 0; i < 400; ++i) {
-    const Vec3 a(u(rng), u(rng), u(rng)), d = glm::normalize(Vec3(u(rng), u(rng), u(rng))) * 8.0f;
+  for (int i = 0; i < n; ++i) {
+    const Vec3 a(u(rng), u(rng), u(rng)), d = glm::normalize(Vec3(u(rng), u(rng), u(rng))) * half_length;
     g.triangles.push_back({a - d, a + d, a + d + Vec3(0.01f, 0.02f, 0.0f), 0});
   }
   g.finalize();
+  return g;
+}
+
+TEST(TriangleBox, TreesThatDivideSpaceKeepOnlyTheCellsATriangleTouches) {
+  const tracer::Geometry g = long_diagonal_triangles(400, 8.0f);
   const auto boxes = g.primitive_bounds();
   for (const char* name : {"octree", "kdtree"}) {
     accel::BuildLimits with;
@@ -328,15 +334,8 @@ TEST(TriangleBox, TheClippedPartHoldsEveryPointOfTheTriangleInTheCell) {
 }
 
 TEST(TriangleBox, ClippedCandidatesGiveTheSahKdTreeALowerCost) {
-  // Long thin diagonal triangles, as above: the faces of their boxes are poor planes.
-  tracer::Geometry g;
-  std::mt19937 rng(5);
-  std::uniform_real_distribution<float> u(-5.0f, 5.0f);
-  for (int i = 0; i < 2000; ++i) {
-    const Vec3 a(u(rng), u(rng), u(rng)), d = glm::normalize(Vec3(u(rng), u(rng), u(rng))) * 3.0f;
-    g.triangles.push_back({a - d, a + d, a + d + Vec3(0.01f, 0.02f, 0.0f), 0});
-  }
-  g.finalize();
+  // The faces of long diagonal triangles' boxes are poor planes.
+  const tracer::Geometry g = long_diagonal_triangles(2000, 3.0f);
   const auto boxes = g.primitive_bounds();
   accel::BuildLimits limits;
   limits.overlap = tracer::primitive_overlap(g);
