@@ -101,7 +101,7 @@ double Measurement::rays_per_s() const {
 Prepared prepare(const tracer::Scene& scene, std::span<const accel::Aabb> boxes, const std::string& structure,
                  const nlohmann::json& params, const MeasureOptions& options, const std::optional<Reference>& reference) {
   Prepared p;
-  Measurement& m = p.m;
+  Measurement& m = p.measurement;
   const auto t_build = Clock::now();
   try {
     p.built = tracer::build_accel(structure, params, scene.geometry, boxes, options.limits);
@@ -173,7 +173,7 @@ Prepared prepare(const tracer::Scene& scene, std::span<const accel::Aabb> boxes,
 }
 
 std::optional<Sample> time_render(const tracer::Scene& scene, Prepared& p, const MeasureOptions& options) {
-  Measurement& m = p.m;
+  Measurement& m = p.measurement;
   try {
     // One render thread is the calling thread (tracer::parallel_items' worker 0): its own CPU
     // clock. With more, the process's clock sums every thread's (nothing else runs meanwhile).
@@ -207,10 +207,10 @@ std::optional<Sample> time_render(const tracer::Scene& scene, Prepared& p, const
 void inspect(const tracer::Scene& scene, Prepared& p, const MeasureOptions& options) {
   if (!options.inspect || !p.image) return;
   try {
-    options.inspect(scene, p.built, options, *p.image, p.m);
+    options.inspect(scene, p.built, options, *p.image, p.measurement);
   } catch (const std::exception& e) {
-    p.m.status = RowStatus::Failed;
-    p.m.reason = std::string("inspect: ") + e.what();
+    p.measurement.status = RowStatus::Failed;
+    p.measurement.reason = std::string("inspect: ") + e.what();
   }
 }
 
@@ -225,16 +225,16 @@ Measurement measure(const tracer::Scene& scene, std::span<const accel::Aabb> box
                     const std::string& structure, const nlohmann::json& params,
                     const MeasureOptions& options, const std::optional<Reference>& reference) {
   Prepared p = prepare(scene, boxes, structure, params, options, reference);
-  if (p.m.status != RowStatus::Ok) return std::move(p.m);
+  if (p.measurement.status != RowStatus::Ok) return std::move(p.measurement);
   std::vector<Sample> samples;
   for (int i = 0; i < options.repetitions; ++i) {
     const auto s = time_render(scene, p, options);
-    if (!s) return std::move(p.m);
+    if (!s) return std::move(p.measurement);
     samples.push_back(*s);
   }
-  set_timings(p.m, samples);
+  set_timings(p.measurement, samples);
   inspect(scene, p, options);
-  return std::move(p.m);
+  return std::move(p.measurement);
 }
 
 }  // namespace harness

@@ -121,8 +121,8 @@ struct Measurement {
 /// A configuration built, rendered once with counters (and checked against naive), warmed up:
 /// ready for timed renders.
 struct Prepared {
-  Measurement m;                       ///< Build and counting pass; m.status Ok means ready to time.
-  accel::AnyAccel built;               ///< The structure (when m.built).
+  Measurement measurement;             ///< Build and counting pass; status Ok means ready to time.
+  accel::AnyAccel built;               ///< The structure (when measurement.built).
   std::optional<tracer::Image> image;  ///< The counting pass's image, kept for options.inspect or keep_image.
 };
 

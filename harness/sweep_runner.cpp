@@ -38,7 +38,7 @@ std::string clock_text(double seconds) {
 struct Contender {
   const SweepConfig* row = nullptr;  ///< The row to write, or nullptr.
   bool naive = false;                ///< Naive, the reference: contender 0 of every batch.
-  Prepared p;                        ///< Built, checked, warmed up; then timed.
+  Prepared prepared;                 ///< Built, checked, warmed up; then timed.
 };
 
 using Emit = std::function<void(json, const SweepConfig&, const std::string&)>;
@@ -61,9 +61,9 @@ struct TimeBatch {
 
   void operator()(std::vector<Contender>& batch) const {
     Rounds rounds(batch.size());
-    const auto ok = [&](std::size_t i) { return batch[i].p.m.status == RowStatus::Ok; };
+    const auto ok = [&](std::size_t i) { return batch[i].prepared.measurement.status == RowStatus::Ok; };
     const auto time = [&](std::size_t i) {
-      return time_render(scene, batch[i].p, batch[i].naive ? naive_options : contender_options);
+      return time_render(scene, batch[i].prepared, batch[i].naive ? naive_options : contender_options);
     };
     const bool apart = definition.validates_apart();
     // Runs `count` rounds over naive and `who`; false when stopped before they were complete.
@@ -86,7 +86,7 @@ struct TimeBatch {
     // Statistics of every contender; the speedup's interval pairs its samples with naive's.
     const auto evaluate = [&]() {
       for (std::size_t i = 0; i < batch.size(); ++i) {
-        Measurement& m = batch[i].p.m;
+        Measurement& m = batch[i].prepared.measurement;
         if (m.status != RowStatus::Ok) continue;
         set_timings(m, rounds.samples(i));
         double width = m.render_ms_ci->relative_width(m.render_ms->median);
@@ -108,43 +108,43 @@ struct TimeBatch {
       for (int pass = 1; pass <= definition.remeasure && !stop_requested(); ++pass) {
         std::vector<std::size_t> again{0};
         for (std::size_t i = 1; i < batch.size(); ++i)
-          if (ok(i) && batch[i].p.m.noisy) again.push_back(i);
-        if (again.size() == 1 && !(batch[0].row && batch[0].p.m.noisy)) break;
+          if (ok(i) && batch[i].prepared.measurement.noisy) again.push_back(i);
+        if (again.size() == 1 && !(batch[0].row && batch[0].prepared.measurement.noisy)) break;
         if (progress)
           std::fprintf(stderr, "sweep: %s: %zu noisy row(s): %d more rounds (pass %d of at most %d)\n",
-                       spec.name.c_str(), again.size() - 1 + (batch[0].p.m.noisy ? 1 : 0), definition.repetitions,
+                       spec.name.c_str(), again.size() - 1 + (batch[0].prepared.measurement.noisy ? 1 : 0), definition.repetitions,
                        pass, definition.remeasure);
         const bool whole = run_rounds(again, definition.repetitions);
-        for (std::size_t i : again) batch[i].p.m.remeasured++;
+        for (std::size_t i : again) batch[i].prepared.measurement.remeasured++;
         evaluate();
         if (!whole) break;
       }
     }
     // Rows: naive's first, then the others in configuration order.
-    const Measurement& naive = batch[0].p.m;
+    const Measurement& naive = batch[0].prepared.measurement;
     for (std::size_t i = 0; i < batch.size(); ++i) {
       Contender& c = batch[i];
       if (!c.row) continue;
       // Stopped before the rounds were complete: timed in part, measured again on --resume.
-      if (c.p.m.status == RowStatus::Ok && !complete && naive.status == RowStatus::Ok) continue;
+      if (c.prepared.measurement.status == RowStatus::Ok && !complete && naive.status == RowStatus::Ok) continue;
       const MeasureOptions& o = c.naive ? naive_options : contender_options;
-      if (c.p.m.status == RowStatus::Ok && o.inspect && c.p.image) inspect(scene, c.p, o);
+      if (c.prepared.measurement.status == RowStatus::Ok && o.inspect && c.prepared.image) inspect(scene, c.prepared, o);
       std::optional<Reference> reference;
       if (naive.status == RowStatus::Ok && complete) {
         // Naive's median over the rounds this row was timed in (every round: naive is in all).
         const auto paired = rounds.paired_wall(0, i);
         reference = Reference{naive.image_hash, paired.first.empty() ? 0.0 : median_of(paired.first), naive.rays, nullptr};
-      } else if (c.p.m.status == RowStatus::Ok) {
-        c.p.m.status = RowStatus::Failed;
-        c.p.m.reason = "naive, the reference, failed while being timed: " + naive.reason;
+      } else if (c.prepared.measurement.status == RowStatus::Ok) {
+        c.prepared.measurement.status = RowStatus::Failed;
+        c.prepared.measurement.reason = "naive, the reference, failed while being timed: " + naive.reason;
       }
-      emit(make_row(*c.row, spec, primitives, c.naive ? naive_options : contender_options, c.p.m, reference), *c.row,
-           describe(c.p.m, reference));
+      emit(make_row(*c.row, spec, primitives, c.naive ? naive_options : contender_options, c.prepared.measurement, reference), *c.row,
+           describe(c.prepared.measurement, reference));
     }
     // After the rows: inspecting a row can render too (fronts' references and extra seeds).
     for (Contender& c : batch) {
-      summary.trace_s += c.p.m.spent_trace_s;
-      c.p.m.spent_trace_s = 0.0;  // naive stays for the next batch: count its time once
+      summary.trace_s += c.prepared.measurement.spent_trace_s;
+      c.prepared.measurement.spent_trace_s = 0.0;  // naive stays for the next batch: count its time once
     }
   }
 };
@@ -318,18 +318,18 @@ RunSummary run_sweep(const SweepDefinition& definition, const RunOptions& option
       std::vector<Contender> batch;
       batch.push_back({naive_row ? &pending[*naive_row] : nullptr, true,
                        prepare(*scene, boxes, "naive", json::object(), naive_options, std::nullopt)});
-      summary.build_s += batch[0].p.m.spent_build_s;
-      if (batch[0].p.m.status != RowStatus::Ok) {
-        summary.trace_s += batch[0].p.m.spent_trace_s;
-        const std::string why = "no naive reference on this scene: " + batch[0].p.m.reason;
-        if (naive_row) emit(make_row(pending[*naive_row], spec, primitives, naive_options, batch[0].p.m, std::nullopt),
-                            pending[*naive_row], describe(batch[0].p.m, std::nullopt));
+      summary.build_s += batch[0].prepared.measurement.spent_build_s;
+      if (batch[0].prepared.measurement.status != RowStatus::Ok) {
+        summary.trace_s += batch[0].prepared.measurement.spent_trace_s;
+        const std::string why = "no naive reference on this scene: " + batch[0].prepared.measurement.reason;
+        if (naive_row) emit(make_row(pending[*naive_row], spec, primitives, naive_options, batch[0].prepared.measurement, std::nullopt),
+                            pending[*naive_row], describe(batch[0].prepared.measurement, std::nullopt));
         for (std::size_t i : members)
           if (i != naive_row) emit(make_failed_row(pending[i], spec, contender_options, why), pending[i], "failed: " + why);
         continue;
       }
-      Reference reference{batch[0].p.m.image_hash, 0.0, batch[0].p.m.rays, nullptr};
-      if (batch[0].p.image) reference.image = std::make_shared<const tracer::Image>(*batch[0].p.image);
+      Reference reference{batch[0].prepared.measurement.image_hash, 0.0, batch[0].prepared.measurement.rays, nullptr};
+      if (batch[0].prepared.image) reference.image = std::make_shared<const tracer::Image>(*batch[0].prepared.image);
       const TimeBatch time_batch{*scene, spec, primitives, naive_options, contender_options, definition, summary, emit, describe,
                                  options.progress};
       const std::uint64_t budget = accel::memory_budget_bytes(mo.limits);
@@ -339,15 +339,15 @@ RunSummary run_sweep(const SweepDefinition& definition, const RunOptions& option
         if (stop_requested()) break;
         const SweepConfig& c = pending[i];
         Prepared p = prepare(*scene, boxes, c.structure, c.params, contender_options, reference);
-        summary.build_s += p.m.spent_build_s;
-        if (p.m.status != RowStatus::Ok) {
-          summary.trace_s += p.m.spent_trace_s;
-          emit(make_row(c, spec, primitives, contender_options, p.m, reference), c, describe(p.m, reference));
+        summary.build_s += p.measurement.spent_build_s;
+        if (p.measurement.status != RowStatus::Ok) {
+          summary.trace_s += p.measurement.spent_trace_s;
+          emit(make_row(c, spec, primitives, contender_options, p.measurement, reference), c, describe(p.measurement, reference));
           continue;
         }
         // Every structure of a batch is held while the rounds run: their memory together stays
         // within the build budget, else the batch is timed and let go before the next one starts.
-        const std::uint64_t bytes = p.m.build_stats.memory_bytes;
+        const std::uint64_t bytes = p.measurement.build_stats.memory_bytes;
         if (batch.size() > 1 && held + bytes > budget) {
           time_batch(batch);
           batch.resize(1);

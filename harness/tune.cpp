@@ -35,7 +35,7 @@ class RenderTarget : public TuneTarget {
     MeasureOptions naive_options = options_;
     naive_options.keep_image = true;  // the peers' reference
     contenders_.push_back(prepare(scene_, boxes_, "naive", json::object(), naive_options, std::nullopt));
-    const Measurement& m = contenders_[0].m;
+    const Measurement& m = contenders_[0].measurement;
     if (m.status != RowStatus::Ok) throw SweepError("tune: naive reference failed: " + m.reason);
     reference_ = Reference{m.image_hash, 0.0, m.rays, nullptr};
     if (contenders_[0].image) reference_.image = std::make_shared<const tracer::Image>(*contenders_[0].image);
@@ -46,10 +46,10 @@ class RenderTarget : public TuneTarget {
   }
   std::vector<bool> prepare_confirmation(const std::vector<json>& params) override {
     contenders_.resize(1);  // naive stays, prepared by naive()
-    std::vector<bool> ok{contenders_[0].m.status == RowStatus::Ok};
+    std::vector<bool> ok{contenders_[0].measurement.status == RowStatus::Ok};
     for (const json& p : params) {
       contenders_.push_back(prepare(scene_, boxes_, structure_, p, options_, reference_));
-      ok.push_back(contenders_.back().m.status == RowStatus::Ok);
+      ok.push_back(contenders_.back().measurement.status == RowStatus::Ok);
     }
     return ok;
   }
