@@ -145,7 +145,9 @@ TEST(Bvh, TheTreeIsTheSameAtAnyThreadCount) {
     std::uint32_t next_pair = 2;
     expect_depth_first(reference.nodes(), 0, next_pair);
     EXPECT_EQ(next_pair, reference.nodes().size());
-    if (leaf == 1) EXPECT_EQ(reference.stats().nodes, 2 * boxes.size() - 1);
+    if (leaf == 1) {
+      EXPECT_EQ(reference.stats().nodes, 2 * boxes.size() - 1);
+    }
     for (int threads : {2, 3, 0}) {
       SCOPED_TRACE(threads);
       BvhParams p = one;

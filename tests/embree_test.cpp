@@ -265,7 +265,9 @@ void expect_peer_agrees_at_every_isa(const std::string& peer, const nlohmann::js
     const accel::AnyAccel a = tracer::build_accel(peer, k, g, boxes);
     std::visit(
         [&](const auto& s) {
-          if constexpr (requires { s.native(); }) EXPECT_TRUE(s.native()) << "its own primitives answer";
+          if constexpr (requires { s.native(); }) {
+            EXPECT_TRUE(s.native()) << "its own primitives answer";
+          }
         },
         a.variant());
     std::vector<tracer::Hit> single(rays.size()), packets(rays.size());
