@@ -27,13 +27,16 @@ const knobs::KnobTable<BvhParams>& BvhParams::knobs() {
            .probes({0.1, 1000.0}),
        K::integer(kBuildThreadsKnob, &BvhParams::build_threads, 0, 1024, "threads",
                   "Threads the build may use (0 = every core); the tree is the same at any count.")
-           .probes({2})});
+           .probes({2}),
+       K::number("spatial_split_budget", &BvhParams::spatial_split_budget, 0.0, 4.0, "references per primitive",
+                 "Extra references spatial splits (SBVH) may add per primitive; 0: none. Builds on one thread.")
+           .probes({0.25, 4.0})});
   return table;
 }
 
 Bvh::Bvh(std::span<const Aabb> boxes, const BvhParams& params, const BuildLimits& limits)
     : params_(params) {
-  build(boxes, memory_budget_bytes(limits));
+  build(boxes, memory_budget_bytes(limits), limits.overlap);
 }
 
 Bvh::Bvh(std::span<const Aabb> boxes, const BvhParams& params) : Bvh(boxes, params, BuildLimits{}) {}

@@ -7,6 +7,7 @@
 #include "interval_slack.h"
 #include "knobs/knob_table.h"
 #include "leaf_loop.h"
+#include "primitive_overlap.h"
 #include "ray_setup.h"
 #include "sphere_soa.h"
 #include "stats.h"
@@ -39,6 +40,9 @@ struct BvhParams {
   float traversal_cost = 3.0f;
   /// Threads the build may use (0 = every core). The tree is the same at any count.
   int build_threads = 1;
+  /// Extra primitive references spatial splits may add, as a share of the primitives; 0 builds
+  /// without them. Above 0 the build is Stich et al.'s SBVH (spatial_split_builder.h), on one thread.
+  float spatial_split_budget = 0.0f;
 
   /// Name, range, unit and doc line of every knob above.
   static const knobs::KnobTable<BvhParams>& knobs();
@@ -209,7 +213,7 @@ class Bvh {
     }
   }
 
-  void build(std::span<const Aabb> boxes, std::uint64_t max_memory_bytes);
+  void build(std::span<const Aabb> boxes, std::uint64_t max_memory_bytes, const PrimitiveOverlap& overlap);
 
   BvhParams params_;
   std::vector<BvhNode, CacheLineAllocator<BvhNode>> nodes_;

@@ -8,6 +8,7 @@
 #include "accel.h"
 #include "binned_sah.h"
 #include "build_tasks.h"
+#include "spatial_split_builder.h"
 
 #include <tbb/parallel_invoke.h>
 
@@ -129,25 +130,35 @@ class Builder {
 
 }  // namespace
 
-void Bvh::build(std::span<const Aabb> boxes, std::uint64_t max_memory_bytes) {
+void Bvh::build(std::span<const Aabb> boxes, std::uint64_t max_memory_bytes, const PrimitiveOverlap& overlap) {
   BvhParams::knobs().validate(params_);  // the JSON knobs' checks, for structs built in code
   const auto start = std::chrono::steady_clock::now();
   const std::uint64_t n = boxes.size();
-  const std::uint64_t node_bound = n ? 2 * n : 0;  // 2n - 1 nodes and the unused one
-  // The builder also holds one reference per primitive while it runs.
-  const std::uint64_t bytes =
-      node_bound * sizeof(BvhNode) + n * (sizeof(std::uint32_t) + BinnedSah::kBytesPerPrimitive);
+  const bool spatial = params_.spatial_split_budget > 0.0f;
+  // Spatial splits may reference a primitive from several leaves, up to the budget.
+  const std::uint64_t max_refs = spatial ? n + std::uint64_t(double(n) * double(params_.spatial_split_budget)) : n;
+  const std::uint64_t node_bound = max_refs ? 2 * max_refs : 0;  // 2r - 1 nodes and the unused one
+  // The builder also holds one reference per primitive while it runs (the spatial one a box and
+  // an id per reference, the node's and its children's).
+  const std::uint64_t scratch = spatial ? 2 * sizeof(Aabb) + 8 : BinnedSah::kBytesPerPrimitive;
+  const std::uint64_t bytes = node_bound * sizeof(BvhNode) + max_refs * (sizeof(std::uint32_t) + scratch);
   if (bytes > max_memory_bytes)
     throw knobs::ConfigError("bvh: " + std::to_string(n) + " primitives need " + std::to_string(bytes) +
                       " bytes, over the memory budget of " + std::to_string(max_memory_bytes) +
                       " bytes (raise --max-memory)");
 
   nodes_.clear();
-  prim_ids_.resize(n);  // the builder writes them in leaf order (BinnedSah::copy_ids)
+  prim_ids_.clear();
   stats_ = {};
   stats_.primitives = n;
-  stats_.prim_refs = n;
-  if (n > 0) {
+  if (n > 0 && spatial) {
+    std::vector<BvhNode> nodes;
+    const BuildTally tally = build_spatial_split_bvh(boxes, params_, overlap, max_refs, nodes, prim_ids_);
+    nodes_.assign(nodes.begin(), nodes.end());
+    const Aabb root{{nodes_[0].lo[0], nodes_[0].lo[1], nodes_[0].lo[2]}, {nodes_[0].hi[0], nodes_[0].hi[1], nodes_[0].hi[2]}};
+    tally.write_to(stats_, root.half_area(), n);
+  } else if (n > 0) {
+    prim_ids_.resize(n);  // the builder writes them in leaf order (BinnedSah::copy_ids)
     run_with_build_threads(params_.build_threads, [&] {
       Builder builder(boxes, params_, node_bound + 2);
       const BuildTally tally = builder.run(std::uint32_t(n));
@@ -158,11 +169,13 @@ void Bvh::build(std::span<const Aabb> boxes, std::uint64_t max_memory_bytes) {
                                   .half_area();
       tally.write_to(stats_, root_area, n);
     });
-    for (BvhNode& node : nodes_) pad_outward(node);
   }
+  for (BvhNode& node : nodes_) pad_outward(node);
   nodes_.shrink_to_fit();
+  prim_ids_.shrink_to_fit();
+  stats_.prim_refs = prim_ids_.size();
   stats_.nodes = nodes_.empty() ? 0 : nodes_.size() - 1;
-  stats_.mean_leaf_prims = stats_.leaves ? double(n) / double(stats_.leaves) : 0.0;
+  stats_.mean_leaf_prims = stats_.leaves ? double(prim_ids_.size()) / double(stats_.leaves) : 0.0;
   stats_.memory_bytes = nodes_.size() * sizeof(BvhNode) + prim_ids_.size() * sizeof(std::uint32_t);
   stats_.build_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();

@@ -50,7 +50,8 @@ TEST(AccelFactory, NaiveRejectsAnyKnob) {
 
 TEST(AccelFactory, BadKnobsNameTheKey) {
   EXPECT_EQ(error_of("bvh", {{"max_dept", 3}}),
-            "bvh: unknown knob 'max_dept' (its knobs: bins, max_leaf_size, max_depth, traversal_cost, build_threads)");
+            "bvh: unknown knob 'max_dept' (its knobs: bins, max_leaf_size, max_depth, traversal_cost, build_threads, "
+            "spatial_split_budget)");
   EXPECT_EQ(error_of("bvh", {{"max_depth", "3"}}), "bvh: knob 'max_depth' must be an integer, got \"3\"");
   EXPECT_EQ(error_of("bvh", {{"max_depth", 65}}), "bvh: knob 'max_depth' must be in [0, 64], got 65");
   EXPECT_EQ(error_of("bvh", {{"max_depth", -1}}), "bvh: knob 'max_depth' must be in [0, 64], got -1");
@@ -73,7 +74,12 @@ TEST(AccelFactory, ParamsSpellOutEveryKnob) {
   const accel::AnyAccel bvh = accel::make_accel("bvh", {{"max_leaf_size", 2}}, boxes);
   EXPECT_EQ(accel::name_of(bvh), "bvh");
   EXPECT_EQ(accel::params_of(bvh),
-            json({{"bins", 16}, {"max_leaf_size", 2}, {"max_depth", 64}, {"traversal_cost", 3.0}, {"build_threads", 1}}));
+            json({{"bins", 16},
+                  {"max_leaf_size", 2},
+                  {"max_depth", 64},
+                  {"traversal_cost", 3.0},
+                  {"build_threads", 1},
+                  {"spatial_split_budget", 0.0}}));
   // Every knob reported can be fed back and gives the same parameters.
   for (const std::string& name : accel::accel_names()) {
     if (!accel::accel_built(name) || accel::find_structure(name)->selector) continue;

@@ -9,12 +9,14 @@
 #include "tracer/triangle_box.h"
 
 #include "accel/accel.h"
+#include "accel/bvh.h"
 #include "accel/triangle_hit.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <bit>
+#include <cmath>
 #include <cstdio>
 #include <map>
 #include <random>
@@ -331,6 +333,95 @@ TEST(TriangleBox, TheClippedPartHoldsEveryPointOfTheTriangleInTheCell) {
               clipped, tighter);
   EXPECT_GT(clipped, 200);
   EXPECT_GT(tighter, clipped / 4);
+}
+
+/// `small` triangles 0.1 across in a 10-unit cube, crossed by `long_ones` long diagonal triangles:
+/// no object split separates the long ones from the small ones they pass, which is where
+/// spatial splits pay (a floor under furniture, a beam through a room).
+tracer::Geometry small_and_long_triangles(int small, int long_ones) {
+  tracer::Geometry g = long_diagonal_triangles(long_ones, 6.0f);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> u(-5.0f, 5.0f), e(-0.05f, 0.05f);
+  for (int i = 0; i < small; ++i) {
+    const Vec3 a(u(rng), u(rng), u(rng));
+    g.triangles.push_back({a, a + Vec3(e(rng), e(rng), e(rng)), a + Vec3(e(rng), e(rng), e(rng)), 0});
+  }
+  g.finalize();
+  return g;
+}
+
+/// The boxes of the leaves of `bvh` that reference each primitive.
+std::vector<std::vector<accel::Aabb>> leaf_boxes_by_primitive(const accel::Bvh& bvh, std::size_t primitives) {
+  std::vector<std::vector<accel::Aabb>> out(primitives);
+  const auto nodes = bvh.nodes();
+  const auto box_of = [&](std::uint32_t i) {
+    return accel::Aabb{{nodes[i].lo[0], nodes[i].lo[1], nodes[i].lo[2]}, {nodes[i].hi[0], nodes[i].hi[1], nodes[i].hi[2]}};
+  };
+  std::vector<std::uint32_t> todo{0};
+  while (!todo.empty()) {
+    const std::uint32_t i = todo.back();
+    todo.pop_back();
+    if (nodes[i].is_leaf()) {
+      for (std::uint32_t k = nodes[i].first; k < nodes[i].first + nodes[i].count; ++k)
+        out[bvh.prim_ids()[k]].push_back(box_of(i));
+      continue;
+    }
+    todo.push_back(nodes[i].first);
+    todo.push_back(nodes[i].first + 1);
+  }
+  return out;
+}
+
+TEST(SpatialSplits, EveryPointOfATriangleLiesInALeafThatHoldsIt) {
+  const tracer::Geometry g = small_and_long_triangles(3000, 100);
+  const auto boxes = g.primitive_bounds();
+  accel::BuildLimits limits;
+  limits.overlap = tracer::primitive_overlap(g);
+  accel::BvhParams p;
+  p.spatial_split_budget = 1.0f;
+  const accel::Bvh bvh(boxes, p, limits);
+  const accel::BuildStats& s = bvh.stats();
+  std::printf("%llu references to %zu triangles, %llu leaves\n", static_cast<unsigned long long>(s.prim_refs),
+              boxes.size(), static_cast<unsigned long long>(s.leaves));
+  EXPECT_GT(s.prim_refs, boxes.size() + boxes.size() / 10) << "the splits cut few triangles";
+  EXPECT_LE(s.prim_refs, 2 * boxes.size()) << "over the budget";
+  EXPECT_EQ(s.nodes, 2 * s.leaves - 1);
+  const auto leaves = leaf_boxes_by_primitive(bvh, boxes.size());
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> w(0.0f, 1.0f);
+  for (std::size_t id = 0; id < boxes.size(); ++id) {
+    const tracer::Triangle& t = g.triangles[id];
+    ASSERT_FALSE(leaves[id].empty()) << "triangle " << id << " is in no leaf";
+    for (int k = 0; k < 64; ++k) {
+      float a = w(rng), b = w(rng);
+      if (a + b > 1.0f) a = 1.0f - a, b = 1.0f - b;
+      // Corners and edges included: the samples end on the vertices.
+      if (k < 3) a = float(k == 1), b = float(k == 2);
+      const Vec3 q = t.p0 + a * (t.p1 - t.p0) + b * (t.p2 - t.p0);
+      const bool held = std::any_of(leaves[id].begin(), leaves[id].end(),
+                                    [&](const accel::Aabb& box) { return box.contains(accel::Aabb::of_point(q)); });
+      ASSERT_TRUE(held) << "triangle " << id << ", sample " << k;
+    }
+  }
+}
+
+TEST(SpatialSplits, LowerTheSahCostOfLongTrianglesAmongSmallOnesWithinTheBudget) {
+  const tracer::Geometry g = small_and_long_triangles(3000, 100);
+  const auto boxes = g.primitive_bounds();
+  accel::BuildLimits limits;
+  limits.overlap = tracer::primitive_overlap(g);
+  for (float budget : {0.05f, 0.5f}) {
+    accel::BvhParams plain, spatial;
+    spatial.spatial_split_budget = budget;
+    const accel::BuildStats a = accel::Bvh(boxes, plain, limits).stats();
+    const accel::BuildStats b = accel::Bvh(boxes, spatial, limits).stats();
+    std::printf("budget %.2f: SAH cost %.2f without spatial splits, %.2f with (%.3f references per triangle)\n",
+                budget, a.sah_cost, b.sah_cost, b.duplication());
+    EXPECT_EQ(a.prim_refs, boxes.size());
+    EXPECT_LE(double(b.prim_refs), std::floor(double(boxes.size()) * (1.0 + budget)));
+    EXPECT_GT(b.prim_refs, boxes.size());
+    EXPECT_LT(b.sah_cost, (budget < 0.1f ? 0.8 : 0.6) * a.sah_cost);
+  }
 }
 
 TEST(TriangleBox, ClippedCandidatesGiveTheSahKdTreeALowerCost) {
