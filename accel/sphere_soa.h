@@ -15,13 +15,10 @@
 #include "stats.h"
 
 #include <algorithm>
-#include <chrono>
 #include <bit>
+#include <cstddef>
 #include <cstdint>
-#include <limits>
 #include <span>
-#include <stdexcept>
-#include <string>
 #include <vector>
 
 namespace accel {
