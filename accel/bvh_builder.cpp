@@ -151,24 +151,23 @@ void Bvh::build(std::span<const Aabb> boxes, std::uint64_t max_memory_bytes, con
   prim_ids_.clear();
   stats_ = {};
   stats_.primitives = n;
+  BuildTally tally;
   if (n > 0 && spatial) {
     std::vector<BvhNode> nodes;
-    const BuildTally tally = build_spatial_split_bvh(boxes, params_, overlap, max_refs, nodes, prim_ids_);
+    tally = build_spatial_split_bvh(boxes, params_, overlap, max_refs, nodes, prim_ids_);
     nodes_.assign(nodes.begin(), nodes.end());
-    const Aabb root{{nodes_[0].lo[0], nodes_[0].lo[1], nodes_[0].lo[2]}, {nodes_[0].hi[0], nodes_[0].hi[1], nodes_[0].hi[2]}};
-    tally.write_to(stats_, root.half_area(), n);
   } else if (n > 0) {
     prim_ids_.resize(n);  // the builder writes them in leaf order (BinnedSah::copy_ids)
     run_with_build_threads(params_.build_threads, [&] {
       Builder builder(boxes, params_, node_bound + 2);
-      const BuildTally tally = builder.run(std::uint32_t(n));
+      tally = builder.run(std::uint32_t(n));
       builder.compact(nodes_);
       builder.copy_ids(prim_ids_);
-      const float root_area = Aabb{{nodes_[0].lo[0], nodes_[0].lo[1], nodes_[0].lo[2]},
-                                   {nodes_[0].hi[0], nodes_[0].hi[1], nodes_[0].hi[2]}}
-                                  .half_area();
-      tally.write_to(stats_, root_area, n);
     });
+  }
+  if (n > 0) {
+    const Aabb root{{nodes_[0].lo[0], nodes_[0].lo[1], nodes_[0].lo[2]}, {nodes_[0].hi[0], nodes_[0].hi[1], nodes_[0].hi[2]}};
+    tally.write_to(stats_, root.half_area(), n);
   }
   for (BvhNode& node : nodes_) pad_outward(node);
   nodes_.shrink_to_fit();

@@ -86,6 +86,7 @@ class SpatialSplitBuilder {
     float cost = kInfinity;
     Aabb left, right;  ///< The children's boxes the search priced.
     std::uint32_t left_count = 0, right_count = 0;
+    Aabb centroids;  ///< Object: the box of the centroids its bins divide.
   };
 
   void build_node(std::uint32_t index, std::vector<Ref> refs, const Aabb& box, int depth, BuildTally& tally) {
@@ -133,6 +134,7 @@ class SpatialSplitBuilder {
     Aabb centroids;
     for (const Ref& r : refs) centroids.grow(r.box.center());
     Split best;
+    best.centroids = centroids;
     std::array<Aabb, BinnedSah::kMaxBins> bin_box;
     std::array<std::uint32_t, BinnedSah::kMaxBins> bin_count;
     std::array<float, BinnedSah::kMaxBins> right_cost;
@@ -214,14 +216,13 @@ class SpatialSplitBuilder {
       n += left_counts[k - 1];
       if (n == 0 || right_n[k] == 0) continue;
       const float cost = params_.traversal_cost + (acc.half_area() * float(n) + right_cost[k]) * inv_area;
-      if (cost < best.cost) best = {kind, axis, k, cost, acc, right_box[k], n, right_n[k]};
+      if (cost < best.cost) best = {kind, axis, k, cost, acc, right_box[k], n, right_n[k], best.centroids};
     }
   }
 
   void partition_object(const std::vector<Ref>& refs, const Split& split, std::vector<Ref>& left,
                         std::vector<Ref>& right) const {
-    Aabb centroids;
-    for (const Ref& r : refs) centroids.grow(r.box.center());
+    const Aabb& centroids = split.centroids;
     const AxisBins bins(centroids.lo[split.axis], centroids.hi[split.axis] - centroids.lo[split.axis], bins_);
     left.reserve(split.left_count);
     right.reserve(split.right_count);
