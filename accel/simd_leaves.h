@@ -58,21 +58,28 @@ template <bool AnyHit, class Batch, class LeafFn>
 }
 
 /// A structure's attach step for SIMD leaves of one shape: checks that `shapes` holds one shape
-/// per primitive the structure was built over, fills `soa` for the structure's id array `ids`
-/// (duplicated references included), and adds the time it takes and the bytes it holds to
-/// `stats`.
-template <class SoA, class Shape>
-void attach_leaf_shapes(const char* structure, const char* what, std::span<const std::uint32_t> ids,
-                        std::span<const Shape> shapes, SoA& soa, BuildStats& stats) {
+/// per primitive the structure was built over, fills `soa` by fill(soa), and adds the time it
+/// takes and the bytes it holds to `stats`.
+template <class SoA, class Shape, class Fill>
+void attach_leaf_shapes(const char* structure, const char* what, std::span<const Shape> shapes, SoA& soa,
+                        BuildStats& stats, Fill&& fill) {
   if (shapes.size() != stats.primitives)
     throw std::invalid_argument(std::string(structure) + ": " + std::to_string(shapes.size()) + " " + what +
                                 " attached to a structure over " + std::to_string(stats.primitives) +
                                 " primitives");
   const auto start = std::chrono::steady_clock::now();
   stats.memory_bytes -= soa.memory_bytes();
-  soa.build(ids, shapes);
+  fill(soa);
   stats.memory_bytes += soa.memory_bytes();
   stats.build_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+/// attach_leaf_shapes filling `soa` by soa.build(ids, shapes), for the structure's id array
+/// `ids` (duplicated references included).
+template <class SoA, class Shape>
+void attach_leaf_shapes(const char* structure, const char* what, std::span<const std::uint32_t> ids,
+                        std::span<const Shape> shapes, SoA& soa, BuildStats& stats) {
+  attach_leaf_shapes(structure, what, shapes, soa, stats, [&](SoA& s) { s.build(ids, shapes); });
 }
 
 }  // namespace accel

@@ -41,19 +41,19 @@ struct WatertightRay {
   }
 };
 
-/// tracer::watertight_distance<float> lane by lane: t of each triangle (> ray.tmin and above the
-/// bound on its own rounding error), or +inf. Only the lanes of `live` (bit i: lane i) hold
-/// triangles; the others may hold anything and come back as whatever they compute.
+/// watertight_lanes on triangles whose coordinates are already on the ray's permuted axes:
+/// tri.p[v][0], [1] and [2] hold vertex v's coordinates on axes w.kx, w.ky and w.kz. A
+/// structure loads its rows in that order (triangle_soa.h), so no lane is moved at run time.
 template <class Batch>
-[[gnu::always_inline]] inline Batch watertight_lanes(const TriangleLanes<Batch>& tri, const Ray& ray,
-                                                     const WatertightRay& w, std::uint32_t live = ~0u) {
+[[gnu::always_inline]] inline Batch watertight_lanes_permuted(const TriangleLanes<Batch>& tri, const Ray& ray,
+                                                              const WatertightRay& w, std::uint32_t live = ~0u) {
   const Batch inf(kInfinity);
   if (!w.valid) return inf;
   const Batch ox(ray.org[w.kx]), oy(ray.org[w.ky]), oz(ray.org[w.kz]);
   // The vertices relative to the origin, on the permuted axes.
-  const Batch a_x = tri.p[0][w.kx] - ox, a_y = tri.p[0][w.ky] - oy, a_z = tri.p[0][w.kz] - oz;
-  const Batch b_x = tri.p[1][w.kx] - ox, b_y = tri.p[1][w.ky] - oy, b_z = tri.p[1][w.kz] - oz;
-  const Batch c_x = tri.p[2][w.kx] - ox, c_y = tri.p[2][w.ky] - oy, c_z = tri.p[2][w.kz] - oz;
+  const Batch a_x = tri.p[0][0] - ox, a_y = tri.p[0][1] - oy, a_z = tri.p[0][2] - oz;
+  const Batch b_x = tri.p[1][0] - ox, b_y = tri.p[1][1] - oy, b_z = tri.p[1][2] - oz;
+  const Batch c_x = tri.p[2][0] - ox, c_y = tri.p[2][1] - oy, c_z = tri.p[2][2] - oz;
   const Batch sx(w.sx), sy(w.sy), sz(w.sz);
   const Batch ax = a_x + sx * a_z, ay = a_y + sy * a_z;
   const Batch bx = b_x + sx * b_z, by = b_y + sy * b_z;
@@ -104,6 +104,21 @@ template <class Batch>
   // !(det == 0 or det not finite) and t > tmin and t > delta_t, NaN failing each comparison.
   const auto keep = ~mixed_signs & (det != zero) & (xsimd::abs(det) < inf) & (t > Batch(ray.tmin)) & (t > delta_t);
   return xsimd::select(keep, t, inf);
+}
+
+/// tracer::watertight_distance<float> lane by lane: t of each triangle (> ray.tmin and above the
+/// bound on its own rounding error), or +inf. Only the lanes of `live` (bit i: lane i) hold
+/// triangles; the others may hold anything and come back as whatever they compute.
+template <class Batch>
+[[gnu::always_inline]] inline Batch watertight_lanes(const TriangleLanes<Batch>& tri, const Ray& ray,
+                                                     const WatertightRay& w, std::uint32_t live = ~0u) {
+  TriangleLanes<Batch> permuted;
+  for (int v = 0; v < 3; ++v) {
+    permuted.p[v][0] = tri.p[v][w.kx];
+    permuted.p[v][1] = tri.p[v][w.ky];
+    permuted.p[v][2] = tri.p[v][w.kz];
+  }
+  return watertight_lanes_permuted(permuted, ray, w, live);
 }
 
 /// tracer::moller_distance<float> lane by lane: t of each triangle (> ray.tmin), or +inf. glm's

@@ -11,6 +11,7 @@
 #include "accel/accel.h"
 #include "accel/bvh.h"
 #include "accel/triangle_hit.h"
+#include "accel/triangle_soa.h"
 
 #include <gtest/gtest.h>
 
@@ -165,6 +166,65 @@ TEST(Triangle, SimdLanesEqualTheScalarRoutinesBitForBit) {
   // Enough hits that the comparison is not of misses only.
   EXPECT_GT(hits[0], lanes / 40);
   EXPECT_GT(hits[1], lanes / 40);
+}
+
+/// A leaf function for TriangleSoA::test that keeps the nearest accepted hit and runs `test`.
+struct NearestLeaf {
+  TriangleTest test;
+  std::uint32_t id = tracer::Hit::kNone;
+  bool accept(std::uint32_t prim, float t, Ray& ray) {
+    if (!(t < ray.tmax)) return false;
+    ray.tmax = t, id = prim;
+    return true;
+  }
+  TriangleTest triangle_test() const { return test; }
+};
+
+TEST(Triangle, LeafRowsGiveEveryLeafItsOwnTrianglesAtAnyCount) {
+  // Leaves of 1 to 19 triangles (past two batches of eight), over a shuffled id array, the last
+  // leaf ending the rows: every ray aimed at a triangle's centroid gets, from that triangle's
+  // leaf, the hit the scalar routine gives on the leaf's triangles, with either routine.
+  std::mt19937 rng(31);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  std::vector<accel::TriangleShape> shapes;
+  std::vector<accel::TriangleSoA::LeafRange> leaves;
+  for (std::uint32_t count = 1, first = 0; count <= 19; first += count, ++count) leaves.push_back({first, count});
+  const std::uint32_t n = leaves.back().first + leaves.back().count;
+  for (std::uint32_t i = 0; i < n; ++i) {
+    const Vec3 c(u(rng) * 10.0f, u(rng) * 10.0f, u(rng) * 10.0f);
+    shapes.push_back({c + Vec3(u(rng), u(rng), u(rng)), c + Vec3(u(rng), u(rng), u(rng)), c + Vec3(u(rng), u(rng), u(rng))});
+  }
+  std::vector<std::uint32_t> ids(n);
+  for (std::uint32_t i = 0; i < n; ++i) ids[i] = i;
+  std::shuffle(ids.begin(), ids.end(), rng);
+  accel::TriangleSoA soa;
+  soa.build(ids, leaves, shapes);
+  std::uint64_t hits = 0;
+  for (const TriangleTest test : {TriangleTest::Watertight, TriangleTest::Moller})
+    for (const auto& leaf : leaves)
+      for (std::uint32_t j = leaf.first; j < leaf.first + leaf.count; ++j) {
+        const accel::TriangleShape& target = shapes[ids[j]];
+        Ray r;
+        r.org = Vec3(u(rng), u(rng), u(rng)) * 30.0f;
+        r.dir = (target.p0 + target.p1 + target.p2) / 3.0f - r.org;
+        Ray want = r;
+        std::uint32_t want_id = tracer::Hit::kNone;
+        for (std::uint32_t k = leaf.first; k < leaf.first + leaf.count; ++k) {
+          const accel::TriangleShape& t = shapes[ids[k]];
+          const float d = test == TriangleTest::Watertight ? tracer::watertight_distance<float>(t.p0, t.p1, t.p2, want)
+                                                           : tracer::moller_distance<float>(t.p0, t.p1, t.p2, want);
+          if (d < want.tmax) want.tmax = d, want_id = ids[k];
+        }
+        NearestLeaf got{test};
+        Ray ray = r;
+        bool hit = false;
+        soa.test<false, false>(ids.data(), leaf.first, leaf.count, ray, accel::WatertightRay(ray), got, nullptr, hit);
+        ASSERT_EQ(got.id, want_id) << "leaf of " << leaf.count << ", triangle " << j - leaf.first;
+        ASSERT_EQ(std::bit_cast<std::uint32_t>(ray.tmax), std::bit_cast<std::uint32_t>(want.tmax));
+        hits += want_id != tracer::Hit::kNone;
+      }
+  // Rays aimed at centroids hit (a few may graze a nearer triangle's edge, which is still a hit).
+  EXPECT_GT(hits, 2u * n * 9u / 10u);
 }
 
 /// Rays from points inside a closed mesh aimed exactly at its shared vertices and at points on
