@@ -137,7 +137,7 @@ TEST(AccelFactory, AutoPicksNaiveForFewPrimitivesAndSaysSo) {
 TEST(AccelFactory, MemoryBudgetErrorNamesTheKnob) {
   const auto boxes = row_of_boxes(1000);
   try {
-    accel::make_accel("bvh", nullptr, boxes, accel::BuildLimits{1024});
+    accel::make_accel("bvh", nullptr, boxes, accel::BuildLimits{1024, {}});
     FAIL() << "expected ConfigError";
   } catch (const knobs::ConfigError& e) {
     EXPECT_NE(std::string(e.what()).find("--max-memory"), std::string::npos) << e.what();

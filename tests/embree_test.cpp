@@ -211,7 +211,7 @@ TEST(Embree, IsaRefusalNamesTheLevelAndTheKnob) {
 TEST(Embree, MemoryBudgetIsHonoured) {
   const Spheres sp = random_spheres(5000, 17);
   try {
-    accel::make_accel("embree", nullptr, sp.boxes, accel::BuildLimits{4096});
+    accel::make_accel("embree", nullptr, sp.boxes, accel::BuildLimits{4096, {}});
     FAIL() << "expected ConfigError";
   } catch (const knobs::ConfigError& e) {
     EXPECT_NE(std::string(e.what()).find("--max-memory"), std::string::npos) << e.what();
@@ -282,7 +282,7 @@ void expect_peer_agrees_at_every_isa(const std::string& peer, const nlohmann::js
       for (std::size_t i = 0; i < shadow.size(); i += 16) {
         const std::size_t n = std::min<std::size_t>(16, shadow.size() - i);
         const std::uint32_t bits = isect.occluded_packet(std::span<const Ray>(shadow.data() + i, n));
-        for (std::size_t k = 0; k < n; ++k) occluded_packets[i + k] = (bits >> k) & 1u;
+        for (std::size_t lane = 0; lane < n; ++lane) occluded_packets[i + lane] = (bits >> lane) & 1u;
       }
     });
     for (const auto* got : {&single, &packets}) {
@@ -422,7 +422,7 @@ TEST(EmbreePoints, WithoutItsSpheresItIsTheUserGeometryAdapter) {
   }
   // Errors name it, not the adapter it is built on.
   try {
-    accel::make_accel("embree_points", nullptr, random_spheres(5000, 23).boxes, accel::BuildLimits{4096});
+    accel::make_accel("embree_points", nullptr, random_spheres(5000, 23).boxes, accel::BuildLimits{4096, {}});
     FAIL() << "expected ConfigError";
   } catch (const knobs::ConfigError& e) {
     EXPECT_EQ(std::string(e.what()).rfind("embree_points: ", 0), 0u) << e.what();

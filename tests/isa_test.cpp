@@ -56,7 +56,9 @@ TEST(Isa, SimdKernelsRunAtTheBuildLevelsWidth) {
   EXPECT_EQ(int(accel::simd::FloatPacket::size), accel::isa_lanes(accel::build_isa()));
   EXPECT_EQ(int(accel::simd::FloatLeaf::size), std::min(8, accel::isa_lanes(accel::build_isa())));
   const std::string configured = ACCELBENCH_ISA_NAME;
-  if (configured != "native") EXPECT_EQ(accel::isa_name(accel::build_isa()), configured);
+  if (configured != "native") {
+    EXPECT_EQ(accel::isa_name(accel::build_isa()), configured);
+  }
 }
 
 // The node and box tests take max_or_second / min_or_second for the select they replace: equal

@@ -191,7 +191,7 @@ TEST(KdTree, MemoryBudgetStopsARunawayBuild) {
   std::vector<Aabb> boxes;
   for (int i = 0; i < 64; ++i) boxes.push_back({Vec3(float(i) * 0.01f), Vec3(10.0f + float(i) * 0.01f)});
   try {
-    KdTree(boxes, knobs(64, 1, Placement::Leaves, SplitRule::Midpoint), accel::BuildLimits{32ull << 20});
+    KdTree(boxes, knobs(64, 1, Placement::Leaves, SplitRule::Midpoint), accel::BuildLimits{32ull << 20, {}});
     FAIL() << "no error";
   } catch (const knobs::ConfigError& e) {
     EXPECT_EQ(std::string(e.what()),
@@ -203,7 +203,7 @@ TEST(KdTree, MemoryBudgetStopsARunawayBuild) {
   // bound: speed belongs in benchmarks.)
   // The same scene with every_level stores each primitive once and fits easily.
   const KdTree fits(boxes, knobs(64, 1, Placement::EveryLevel, SplitRule::Midpoint),
-                    accel::BuildLimits{32ull << 20});
+                    accel::BuildLimits{32ull << 20, {}});
   EXPECT_EQ(fits.stats().prim_refs, boxes.size());
 }
 
@@ -218,7 +218,7 @@ TEST_P(KdTreeOracle, MatchesNaiveOverTheKnobGrid) {
     for (Placement placement : {Placement::Leaves, Placement::EveryLevel})
       for (int depth : {0, 1, 2, 4, 8, 14})
         for (int leaf : {1, 2, 5, 16}) {
-          const KdTree t(boxes, knobs(depth, leaf, placement, split), accel::BuildLimits{256ull << 20});
+          const KdTree t(boxes, knobs(depth, leaf, placement, split), accel::BuildLimits{256ull << 20, {}});
           const std::vector<AxisPlane> planes = planes_of(t);
           const auto rays = sphere_oracle::make_rays(g, planes, std::uint32_t(checked));
           const std::string label = nlohmann::json(t.params()).dump();

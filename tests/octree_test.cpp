@@ -188,7 +188,7 @@ TEST(Octree, MemoryBudgetStopsTheDepth20Explosion) {
   for (int i = 0; i < 200; ++i) g.spheres.push_back({Vec3(u(rng), u(rng), u(rng)), 4.0f, 0});
   g.finalize();
   try {
-    Octree(g.primitive_bounds(), knobs(20, 8, Placement::Leaves), accel::BuildLimits{64ull << 20});
+    Octree(g.primitive_bounds(), knobs(20, 8, Placement::Leaves), accel::BuildLimits{64ull << 20, {}});
     FAIL() << "no error";
   } catch (const knobs::ConfigError& e) {
     EXPECT_EQ(std::string(e.what()),
@@ -198,7 +198,7 @@ TEST(Octree, MemoryBudgetStopsTheDepth20Explosion) {
   // The error is the whole guarantee: the builder refuses once its nodes would pass the budget,
   // so it never holds more than the budget, however deep the tree could grow. (No wall-time
   // bound: speed belongs in benchmarks.)
-  const Octree fits(g.primitive_bounds(), knobs(20, 8, Placement::EveryLevel), accel::BuildLimits{64ull << 20});
+  const Octree fits(g.primitive_bounds(), knobs(20, 8, Placement::EveryLevel), accel::BuildLimits{64ull << 20, {}});
   EXPECT_EQ(fits.stats().prim_refs, g.spheres.size());
 }
 
@@ -212,7 +212,7 @@ TEST_P(OctreeOracle, MatchesNaiveOverTheKnobGrid) {
   for (Placement placement : {Placement::Leaves, Placement::EveryLevel})
     for (int depth : {0, 1, 2, 3, 5, 7})
       for (int leaf : {1, 2, 5, 16}) {
-        const Octree t(boxes, knobs(depth, leaf, placement), accel::BuildLimits{256ull << 20});
+        const Octree t(boxes, knobs(depth, leaf, placement), accel::BuildLimits{256ull << 20, {}});
         const auto rays = sphere_oracle::make_rays(g, planes_of(t), std::uint32_t(checked));
         const std::string label = nlohmann::json(t.params()).dump();
         if (checked++ % 5 == 0)

@@ -188,9 +188,11 @@ TEST(Registry, BenchmarksCoverEveryGeneratorAndIntegrator) {
   list.output = "\n" + list.output;
   const bool meshes = list.output.find("\nGenerator/mesh/") != std::string::npos;
   if (!meshes) std::printf("no mesh generator rows (the shared models are absent)\n");
-  for (const std::string& n : scenes_gen::generator_names())
-    if (meshes || !scenes_gen::generator_takes_model(n))
+  for (const std::string& n : scenes_gen::generator_names()) {
+    if (meshes || !scenes_gen::generator_takes_model(n)) {
       EXPECT_NE(list.output.find("\nGenerator/" + n + "/"), std::string::npos) << n;
+    }
+  }
   for (const tracer::Integrator* i : integrators::all())
     EXPECT_NE(list.output.find("\nIntegrator/" + std::string(i->name) + "/cornell/"), std::string::npos) << i->name;
 #else

@@ -102,7 +102,7 @@ class SyntheticTarget : public harness::TuneTarget {
   SyntheticTarget(TrueTime truth, double noise, std::pair<int, int> lucky = {-100, -100})
       : truth_(std::move(truth)), noise_(noise), lucky_(lucky), rng_(42) {}
 
-  harness::Reference naive() override { return {1, 0.0, {}}; }
+  harness::Reference naive() override { return {1, 0.0, {}, nullptr}; }
 
   harness::Measurement search(const json& params) override {
     const int d = params.value("max_depth", -1), l = params["max_leaf_size"];

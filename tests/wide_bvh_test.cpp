@@ -133,7 +133,7 @@ TEST(WideBvh, DepthZeroIsOneLeafAndNodesFillUp) {
 TEST(WideBvh, MemoryBudgetErrorNamesTheKnob) {
   const auto boxes = random_boxes(1000, 7);
   try {
-    accel::Bvh4(boxes, {}, accel::BuildLimits{2048});
+    accel::Bvh4(boxes, {}, accel::BuildLimits{2048, {}});
     FAIL() << "expected ConfigError";
   } catch (const knobs::ConfigError& e) {
     EXPECT_NE(std::string(e.what()).find("--max-memory"), std::string::npos) << e.what();
