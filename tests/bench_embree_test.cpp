@@ -176,6 +176,48 @@ TEST(BenchEmbree, ThreadsOnlyRunsNoBenchTraceAndPrintsTheTwoThreadRow) {
       << r.output;
 }
 
+// On a host with slow spells the fastest repetition is the steadier time (a spell only adds
+// time): --statistic min compares those. gears_sf4's bvh8 renders: median 300, fastest 220.
+TEST(BenchEmbree, StatisticMinComparesTheFastestRepetitions) {
+  const ScriptRun r = run_bench_embree("noisy", "--passes 1 --statistic min");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const std::string gears = line_with(r.output, "| SPD gears_sf4 256×256 |");
+  // 237.6 (embree's fastest) over 220, where the medians give 240 over 300 (0.800, missed).
+  EXPECT_NE(gears.find("| bvh8 220 ms | 220 | 238 | 240 | 1.080 |"), std::string::npos) << gears;
+  EXPECT_NE(gears.find("36.4%, 1 (noisy) |"), std::string::npos) << gears;
+  EXPECT_NE(gears.find(": met |"), std::string::npos) << gears;
+  EXPECT_NE(r.output.find("one thread, the fastest of 5 repetitions"), std::string::npos) << r.output;
+}
+
+// --tabulate DIR rebuilds the table of an earlier run from its pass*.json, choosing each
+// workload's quieter pass as the run did, and measures nothing.
+TEST(BenchEmbree, TabulateRebuildsAnEarlierRunsTableWithoutMeasuring) {
+  const fs::path dir = fs::temp_directory_path() / ("accelbench_bench_embree_tabulate_" + std::to_string(getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  // Pass 1: every benchmark, gears_sf4 caught in a spell; pass 2: gears_sf4's renders, quiet.
+  const std::string fake = ACCELBENCH_PYTHON " " ACCELBENCH_SOURCE_DIR "/tests/data/fake_bench_trace.py";
+  const std::string log = " FAKE_BENCH_LOG=" + (dir / "calls.txt").string() + " ";
+  ASSERT_EQ(std::system(("FAKE_BENCH_MODE=spell" + log + fake + " --benchmark_filter=. --benchmark_out=" +
+                         (dir / "pass1.json").string()).c_str()), 0);
+  ASSERT_EQ(std::system(("FAKE_BENCH_MODE=spell" + log + fake + " --benchmark_filter=^Render/gears_sf4/ --benchmark_out=" +
+                         (dir / "pass2.json").string()).c_str()), 0);
+  const ScriptRun r = run_bench_embree("spell", "--table spheres --tabulate " + dir.string());
+  const ScriptRun missing = run_bench_embree("spell", "--tabulate " + (dir / "absent").string());
+  fs::remove_all(dir);
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_TRUE(r.filters.empty()) << r.output;  // bench_trace was not run
+  const std::string gears = line_with(r.output, "| SPD gears_sf4 256×256 |");
+  EXPECT_NE(gears.find("| bvh8 220 ms | 220 | 240 | 242 | 1.091 |"), std::string::npos) << gears;
+  EXPECT_NE(gears.find("1.0%, 2 |"), std::string::npos) << gears;
+  EXPECT_NE(r.output.find("tabulated from " + dir.string()), std::string::npos) << r.output;
+  EXPECT_EQ(line_with(r.output, "| two threads over one"), "") << r.output;  // not in the passes
+  EXPECT_EQ(missing.status, 2) << missing.output;
+  EXPECT_NE(missing.output.find("--tabulate " + (dir / "absent").string() + ": no pass1.json there"), std::string::npos)
+      << missing.output;
+  EXPECT_EQ(missing.output.find("Traceback"), std::string::npos) << missing.output;
+}
+
 TEST(BenchEmbree, AFailedBenchTraceStopsTheRunWithItsMessage) {
   const ScriptRun r = run_bench_embree("fail");
   EXPECT_EQ(r.status, 2) << r.output;
