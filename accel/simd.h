@@ -4,8 +4,6 @@
 // SIMD kernel is written once against these names and compiles for AVX-512, AVX2 and plain
 // SSE2 alike (ACCELBENCH_ISA).
 
-#include "x86_intrinsics.h"  // first: it quiets a GCC 12 false warning inside <immintrin.h>
-
 #include <xsimd/xsimd.hpp>
 
 #include <bit>
