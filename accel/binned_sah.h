@@ -9,6 +9,7 @@
 // 4-float batches, so binning and bounding take one SIMD min and max per box. A partition also
 // returns the bounds of both sides, so no range is read again to bound it.
 
+#include "cache_line_allocator.h"
 #include "geometry.h"
 #include "simd.h"
 
@@ -189,7 +190,7 @@ class BinnedSah {
   }
 
   /// The primitive ids in the boxes' current order.
-  void copy_ids(std::vector<std::uint32_t>& ids) const { ids = ids_; }
+  void copy_ids(std::vector<std::uint32_t>& ids) const { ids.assign(ids_.begin(), ids_.end()); }
 
  private:
   using Float4 = simd::Float4;
@@ -321,8 +322,10 @@ class BinnedSah {
     }
   }
 
-  std::vector<Ref> refs_;
-  std::vector<std::uint32_t> ids_;  ///< The primitive id of each of refs_.
+  // On huge pages once large (cache_line_allocator.h): at 10^6 primitives these 36 MB were
+  // 9,000 page faults on 4 KiB pages.
+  std::vector<Ref, CacheLineAllocator<Ref>> refs_;
+  std::vector<std::uint32_t, CacheLineAllocator<std::uint32_t>> ids_;  ///< The primitive id of each of refs_.
   int bins_;
   float traversal_cost_;
 };
