@@ -8,7 +8,11 @@ two independent renders of 64N passes (other seeds), combined by Richardson extr
 results/ppm_reference_floor.{json,png,svg} (docs/accuracy.md, "Measured").
 
     scripts/ppm_reference_study.py [--scene glass_caustic] [--passes 256] [--photons 10000]
-                                   [--resolution 160x120] [--work build/ppm_study] [--out results]
+                                   [--resolution 160x120] [--set KEY=VALUE ...]
+                                   [--work build/ppm_study] [--out results] [--stem ppm_reference_floor]
+
+--set gives a ppm knob to every render, references and truth alike (on the ring,
+max_paths: docs/accuracy.md).
 
 Resumable: every render is kept under --work and not made again.
 """
@@ -80,12 +84,18 @@ def main():
     ap.add_argument("--bin", default=os.path.join(REPO, "build", "bin", "accelbench"))
     ap.add_argument("--work", default=os.path.join(REPO, "build", "ppm_study"))
     ap.add_argument("--out", default=os.path.join(REPO, "results"))
+    ap.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
+                    help="a ppm knob for every render (references and truth)")
+    ap.add_argument("--stem", default="ppm_reference_floor", help="the results' file name, before .json/.png/.svg")
     args = ap.parse_args()
+    for kv in args.set:
+        if "=" not in kv or kv.startswith("="):
+            fail(f"--set: expected KEY=VALUE, got '{kv}'")
     if args.passes % (RATIO * RATIO) != 0:
         fail(f"--passes must be divisible by {RATIO * RATIO}, got {args.passes}")
     os.makedirs(args.work, exist_ok=True)
     cache = os.path.join(args.work, "references")
-    tag = f"{args.scene}-{args.passes}-{args.photons}-{args.resolution}"
+    tag = "-".join([args.scene, str(args.passes), str(args.photons), args.resolution] + args.set)
 
     # The references, each with its own floor estimate, as the fronts make them.
     refs = {}
@@ -97,7 +107,9 @@ def main():
                 run([args.bin, "fronts", args.scene, "--integrator", "photon", "--knobs", "k", "--values", "k=50",
                      "--seeds", "1", "--repetitions", "1", "--warmup", "0", "--resolution", args.resolution,
                      "--estimator", estimator, "--reference-set", f"passes={passes}",
-                     "--reference-set", f"photons_per_pass={args.photons}", "--cache", cache, "--out", out, "--quiet"])
+                     "--reference-set", f"photons_per_pass={args.photons}"]
+                    + [a for kv in args.set for a in ("--reference-set", kv)]
+                    + ["--cache", cache, "--out", out, "--quiet"])
             with open(out) as f:
                 front = json.load(f)["fronts"][0]
             ref = front["reference"]
@@ -117,7 +129,8 @@ def main():
             print(f"truth: {long_passes} passes, seed {seed:#x}", file=sys.stderr)
             run([args.bin, "render", scene_file, "--integrator", "ppm", "--accel", "bvh", "--resolution", args.resolution,
                  "--param", f"passes={long_passes}", "--param", f"photons_per_pass={args.photons}",
-                 "--param", f"seed={seed}", "--threads", "0", "--pfm", pfm, "--checkpoints", str(RATIO * args.passes)])
+                 "--param", f"seed={seed}", "--threads", "0", "--pfm", pfm, "--checkpoints", str(RATIO * args.passes)]
+                + [a for kv in args.set for a in ("--param", kv)])
         halves.append((read_pfm(pfm), read_pfm(check)))
     g = RATIO ** (1.0 / 3.0)  # ppm's bias order at its default alpha 2/3
     rich_halves = [(g * n - n8) / (g - 1.0) for n, n8 in halves]
@@ -135,12 +148,12 @@ def main():
                      "bias_upper": f.get("bias_rmse", 0.0), "bias_estimate": f.get("bias_rmse_estimate", 0.0),
                      "rmse_against_truth": measured, "actual_error": actual,
                      "floor_over_actual": f["rmse"] / actual if actual > 0 else None})
-    summary = {"scene": args.scene, "resolution": args.resolution, "photons_per_pass": args.photons,
+    summary = {"scene": args.scene, "resolution": args.resolution, "photons_per_pass": args.photons, "set": args.set,
                "truth": {"passes": long_passes, "estimator": "richardson", "seeds": list(TRUTH_SEEDS),
                          "noise_rmse": truth_noise, "plain_minus_richardson_rmse": rmse(plain_truth, truth)},
                "references": rows}
     os.makedirs(args.out, exist_ok=True)
-    with open(os.path.join(args.out, "ppm_reference_floor.json"), "w") as f:
+    with open(os.path.join(args.out, f"{args.stem}.json"), "w") as f:
         json.dump(summary, f, indent=2)
         f.write("\n")
     print(f"{'estimator':>10} {'passes':>7} {'floor':>9} {'noise':>9} {'bias<=':>9} {'actual':>9} {'floor/actual':>12}")
@@ -194,11 +207,12 @@ def main():
     bar.legend(fontsize=8)
     bar.set_title("estimated floor against actual error; the truth's own noise "
                   f"({truth_noise:.3g}) removed in quadrature", fontsize=9)
-    fig.suptitle(f"ppm references on {args.scene}, {args.photons} photons per map per pass, {args.resolution}; "
+    fig.suptitle(f"ppm references on {args.scene}, {args.photons} photons per map per pass, {args.resolution}"
+                 f"{''.join(', ' + kv for kv in args.set)}; "
                  f"{machine_name()}", fontsize=9)
     for ext in ("png", "svg"):
-        fig.savefig(os.path.join(args.out, f"ppm_reference_floor.{ext}"), dpi=80)
-    print(f"wrote {args.out}/ppm_reference_floor.{{json,png,svg}}")
+        fig.savefig(os.path.join(args.out, f"{args.stem}.{ext}"), dpi=80)
+    print(f"wrote {args.out}/{args.stem}.{{json,png,svg}}")
 
 
 if __name__ == "__main__":
