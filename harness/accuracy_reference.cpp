@@ -127,6 +127,7 @@ std::optional<AccuracyReference> read_cached(const fs::path& dir, const std::str
     r.floor.truncation_rmse = f.at("truncation_rmse").get<double>();
     r.floor.bias_rmse = f.value("bias_rmse", 0.0);
     r.floor.bias_rmse_estimate = f.value("bias_rmse_estimate", 0.0);
+    r.floor.bias_order = f.value("bias_order", 0.0);
     r.floor.rmse = f.at("rmse").get<double>();
     r.floor.rel_mse = f.at("rel_mse").get<double>();
     r.floor.epsilon = f.at("epsilon").get<double>();
@@ -155,6 +156,7 @@ json to_json(const ReferenceSpec& s) {
 json to_json(const ReferenceFloor& f) {
   return {{"noise_rmse", f.noise_rmse}, {"truncation_rmse", f.truncation_rmse},
           {"bias_rmse", f.bias_rmse},   {"bias_rmse_estimate", f.bias_rmse_estimate},
+          {"bias_order", f.bias_order},
           {"rmse", f.rmse},             {"rel_mse", f.rel_mse},
           {"epsilon", f.epsilon}};
 }
@@ -386,6 +388,7 @@ static AccuracyReference obtain_progressive(const tracer::Scene& scene, const ac
   r.floor.noise_rmse = std::sqrt(p.noise_mse);
   r.floor.bias_rmse = std::sqrt(p.bias_mse.upper);
   r.floor.bias_rmse_estimate = std::sqrt(p.bias_mse.value);
+  r.floor.bias_order = p.bias_order;
   r.floor.rmse = std::sqrt(p.noise_mse + p.bias_mse.upper);
   r.floor.rel_mse = p.noise_rel + p.bias_rel.upper;
   r.floor.epsilon = options.epsilon;

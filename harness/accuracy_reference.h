@@ -55,6 +55,9 @@ struct ReferenceFloor {
   /// (reference_floor.h), which the floor uses; 0 otherwise.
   double bias_rmse = 0.0;
   double bias_rmse_estimate = 0.0;  ///< The estimate itself (<= bias_rmse).
+  /// The order p of N^-p the bias bound used (reference_floor.h): ppm's 1/3, or lower where the
+  /// stages showed a slower fall; 0 for references without stages.
+  double bias_order = 0.0;
   double rmse = 0.0;             ///< The floor in RMSE: sqrt(noise^2 + truncation^2 + bias^2).
   double rel_mse = 0.0;          ///< The floor in relative MSE (same epsilon as the fronts).
   double epsilon = tracer::kRelMseEpsilon;  ///< That epsilon.

@@ -89,35 +89,69 @@ ProgressiveReference progressive_reference(const HalfStages& a, const HalfStages
     return richardson ? (g * n8 - double(h.n64.pixels()[i][c])) / (g - 1.0) : n8;
   };
 
+  // The plain estimator measures how fast its bias falls where the N/64 stage is there too:
+  // the bias/variance split of the stage before (L_N/8 - L_N/64) against this one's.
+  const bool measure_rate = !richardson && [&] {
+    for (const HalfStages* h : {&a, &b})
+      if (h->n64.width() != a.n.width() || h->n64.height() != a.n.height() || h->n64.pixels().empty()) return false;
+    return true;
+  }();
+
   const std::size_t pixels = a.n.pixels().size();
   ProgressiveReference out;
   out.image = tracer::Image(a.n.width(), a.n.height());
-  std::vector<double> bias(pixels), bias_rel(pixels);
+  // Per pixel, summed over its channels: the bias^2 split of this stage's difference D and of
+  // the one before (not yet divided by (g - 1)^2), plain and weighted.
+  std::vector<double> bias(pixels), bias_rel(pixels), before(pixels, 0.0), before_rel(pixels, 0.0);
+  const auto split = [](double da, double db) {
+    const double dbar = 0.5 * (da + db);
+    return dbar * dbar - 0.25 * (da - db) * (da - db);
+  };
   double noise = 0.0, noise_rel = 0.0;
   for (std::size_t i = 0; i < pixels; ++i) {
-    double pixel_bias = 0.0, pixel_bias_rel = 0.0;
+    double pixel_bias = 0.0, pixel_bias_rel = 0.0, pixel_before = 0.0, pixel_before_rel = 0.0;
     for (int c = 0; c < 3; ++c) {
       const double xa = now(a, i, c), xb = now(b, i, c);
       const double r = 0.5 * (xa + xb);
       out.image.at(int(i % std::size_t(a.n.width())), int(i / std::size_t(a.n.width())))[c] = float(r);
       const double w = 1.0 / (r * r + epsilon);
       const double n2 = 0.25 * (xa - xb) * (xa - xb);
-      const double da = xa - then(a, i, c), db = xb - then(b, i, c);
-      const double dbar = 0.5 * (da + db);
-      const double b2 = (dbar * dbar - 0.25 * (da - db) * (da - db)) / ((g - 1.0) * (g - 1.0));
+      const double b2 = split(xa - then(a, i, c), xb - then(b, i, c));
       noise += n2;
       noise_rel += w * n2;
       pixel_bias += b2;
       pixel_bias_rel += w * b2;
+      if (measure_rate) {
+        const double b0 = split(a.n8.pixels()[i][c] - a.n64.pixels()[i][c], b.n8.pixels()[i][c] - b.n64.pixels()[i][c]);
+        pixel_before += b0;
+        pixel_before_rel += w * b0;
+      }
     }
     bias[i] = pixel_bias;
     bias_rel[i] = pixel_bias_rel;
+    before[i] = pixel_before;
+    before_rel[i] = pixel_before_rel;
   }
   const double values = 3.0 * double(pixels);
   out.noise_mse = noise / values;
   out.noise_rel = noise_rel / values;
-  out.bias_mse = mean_with_upper(bias, a.n.width(), a.n.height());
-  out.bias_rel = mean_with_upper(bias_rel, a.n.width(), a.n.height());
+  const int w = a.n.width(), h = a.n.height();
+  const MeanEstimate now_split = mean_with_upper(bias, w, h);
+  // g as measured: the ratio of the two stages' bias (RMS), where both are clearly there (above
+  // 1.96 standard errors). It may only lower g below the theory's (a bias falling more slowly
+  // makes the same difference D stand for a larger bias), never raise it.
+  double ratio = g;
+  if (measure_rate) {
+    const MeanEstimate before_split = mean_with_upper(before, w, h);
+    const auto clear = [](const MeanEstimate& m) { return m.value > 0.0 && m.value > m.upper - m.value; };
+    if (clear(now_split) && clear(before_split))
+      ratio = std::clamp(std::sqrt(before_split.value / now_split.value), kSlowestStageRatio, g);
+  }
+  const double scale = 1.0 / ((ratio - 1.0) * (ratio - 1.0));
+  const MeanEstimate rel_split = mean_with_upper(bias_rel, w, h);
+  out.bias_mse = {now_split.value * scale, now_split.upper * scale};
+  out.bias_rel = {rel_split.value * scale, rel_split.upper * scale};
+  out.bias_order = std::log(ratio) / std::log(double(kStageRatio));
   return out;
 }
 

@@ -15,6 +15,12 @@
 //   |c_N| <= |E[X - X']| / (g - 1): an upper estimate. Where the bias falls more slowly than N^-p
 //   (the edges of caustics, where the radius straddles the edge) neither form holds.
 //
+// The plain estimator does not take p on trust where the N/64 stage is there too: the bias's
+// RMS one stage earlier, from the same split of L_{N/8} - L_{N/64}, over this stage's gives the
+// measured ratio g' (on the ring's caustic lines about 1.4, not 2). The bound uses
+// min(g, max(g', kSlowestStageRatio)): a bias that falls more slowly is a larger bias for the same
+// D. (Richardson would need N/512 to measure its residual's rate; it keeps g.)
+//
 // In both, the reference is (X_A + X_B) / 2 and, per channel value,
 //   noise^2 = (X_A - X_B)^2 / 4                                   (unbiased for Var of the mean),
 //   bias^2  = (Dbar^2 - (D_A - D_B)^2 / 4) / (g - 1)^2,           D_h = X_h - X'_h,
@@ -46,13 +52,18 @@ ReferenceEstimator parse_estimator(const std::string& name);
 /// The ratio of stages between checkpoints: N, N/8, N/64.
 inline constexpr int kStageRatio = 8;
 
+/// The slowest fall of the bias per kStageRatio stages that a measured rate may stand for (1/8
+/// less bias per 8x the stages, an order of 0.057); slower still is reported at this rate.
+inline constexpr double kSlowestStageRatio = 1.125;
+
 /// Checkpoints an estimator needs below N: 1 (N/8) for plain, 2 (also N/64) for Richardson.
 int estimator_depth(ReferenceEstimator e);
 
 /// What N must be divisible by for those checkpoints: 8 for plain, 64 for Richardson.
 long long estimator_divisor(ReferenceEstimator e);
 
-/// One half's images after N, N/8 and N/64 stages (n64 only for Richardson).
+/// One half's images after N, N/8 and N/64 stages (n64: needed by Richardson; plain measures
+/// its bias's rate with it where it is there).
 struct HalfStages {
   tracer::Image n;
   tracer::Image n8;
@@ -72,6 +83,7 @@ struct ProgressiveReference {
   double noise_rel = 0.0; ///< The same weighted by 1 / (r^2 + eps), r this image.
   MeanEstimate bias_mse;  ///< Its bias, mean squared, radiance^2.
   MeanEstimate bias_rel;  ///< The same weighted by 1 / (r^2 + eps).
+  double bias_order = 0.0; ///< The order p the bias bound used: the theory's, or lower as measured.
 };
 
 /// Combines two halves' stages with estimator `e` for a bias of order `order` (p > 0) and

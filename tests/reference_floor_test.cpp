@@ -22,8 +22,10 @@ constexpr double kStages = 512.0;  // N; checkpoints at N/8 and N/64
 struct Synthetic {
   std::vector<double> truth, beta, gamma;
   double sigma = 0.0;
+  double bias_order = kOrder;  ///< The order of the beta term (the theory's unless set).
 
-  Synthetic(double gamma_scale, double sigma_, std::uint32_t seed) : sigma(sigma_) {
+  Synthetic(double gamma_scale, double sigma_, std::uint32_t seed, double order = kOrder)
+      : sigma(sigma_), bias_order(order) {
     std::mt19937 rng(seed);
     std::uniform_real_distribution<double> u(0.0, 1.0);
     for (int i = 0; i < kW * kH * 3; ++i) {
@@ -38,7 +40,7 @@ struct Synthetic {
     for (int i = 0; i < kW * kH; ++i)
       for (int c = 0; c < 3; ++c) {
         const std::size_t v = std::size_t(i) * 3 + std::size_t(c);
-        const double x = truth[v] + beta[v] * std::pow(n, -kOrder) + gamma[v] * std::pow(n, -2.0 * kOrder) +
+        const double x = truth[v] + beta[v] * std::pow(n, -bias_order) + gamma[v] * std::pow(n, -2.0 * kOrder) +
                          sigma * std::pow(n, -kOrder) * z(rng);
         img.at(i % kW, i / kW)[c] = float(x);
       }
@@ -73,6 +75,37 @@ TEST(ReferenceFloor, PlainRecoversItsBiasAndNoise) {
   EXPECT_NEAR(std::sqrt(r.noise_mse + r.bias_mse.value), s.rmse_to_truth(r.image), 0.05 * s.rmse_to_truth(r.image));
   EXPECT_GT(r.bias_rel.value, 0.0);
   EXPECT_GT(r.noise_rel, 0.0);
+}
+
+// A bias that falls as N^-0.15 (the ring's caustic lines fall about so) instead of the theory's
+// N^-1/3: taking the theory on trust, D = L_N - L_N/8 would stand for half the bias. The stage
+// before shows the slower fall, and the bound follows it.
+TEST(ReferenceFloor, PlainMeasuresABiasThatFallsMoreSlowly) {
+  constexpr double kSlow = 0.15;
+  const Synthetic s(0.0, 0.5, 21, kSlow);
+  harness::HalfStages a = s.half(22), b = s.half(23);
+  const harness::ProgressiveReference r =
+      harness::progressive_reference(a, b, kOrder, harness::ReferenceEstimator::Plain, 1e-2);
+  const double bias = s.rms([&](std::size_t v) { return s.beta[v] * std::pow(kStages, -kSlow); });
+  EXPECT_NEAR(std::sqrt(r.bias_mse.value), bias, 0.1 * bias);
+  EXPECT_NEAR(r.bias_order, kSlow, 0.02);
+  EXPECT_NEAR(std::sqrt(r.noise_mse + r.bias_mse.value), s.rmse_to_truth(r.image), 0.1 * s.rmse_to_truth(r.image));
+  // Without the N/64 stage the rate cannot be measured: the theory's, and half the bias.
+  a.n64 = b.n64 = tracer::Image();
+  const harness::ProgressiveReference trusting =
+      harness::progressive_reference(a, b, kOrder, harness::ReferenceEstimator::Plain, 1e-2);
+  EXPECT_NEAR(trusting.bias_order, kOrder, 1e-12);
+  const double g = std::pow(8.0, kOrder), g_slow = std::pow(8.0, kSlow);
+  EXPECT_NEAR(std::sqrt(trusting.bias_mse.value), bias * (g_slow - 1.0) / (g - 1.0), 0.1 * bias);
+}
+
+// A bias that falls faster than the theory is bounded at the theory's rate (never a smaller bound).
+TEST(ReferenceFloor, PlainNeverAssumesAFasterFall) {
+  const Synthetic s(0.0, 0.5, 24, 0.5);
+  const harness::ProgressiveReference r =
+      harness::progressive_reference(s.half(25), s.half(26), kOrder, harness::ReferenceEstimator::Plain, 1e-2);
+  EXPECT_NEAR(r.bias_order, kOrder, 1e-12);
+  EXPECT_GE(std::sqrt(r.bias_mse.value), s.rms([&](std::size_t v) { return s.beta[v] * std::pow(kStages, -0.5); }));
 }
 
 TEST(ReferenceFloor, RichardsonCancelsTheLeadingBias) {
