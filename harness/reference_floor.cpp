@@ -139,13 +139,14 @@ ProgressiveReference progressive_reference(const HalfStages& a, const HalfStages
   const MeanEstimate now_split = mean_with_upper(bias, w, h);
   // g as measured: the ratio of the two stages' bias (RMS), where both are clearly there (above
   // 1.96 standard errors). It may only lower g below the theory's (a bias falling more slowly
-  // makes the same difference D stand for a larger bias), never raise it.
+  // makes the same difference D stand for a larger bias), never raise it, and not below sqrt(g),
+  // the order of the blur at a discontinuity (the top of reference_floor.h).
   double ratio = g;
   if (measure_rate) {
     const MeanEstimate before_split = mean_with_upper(before, w, h);
     const auto clear = [](const MeanEstimate& m) { return m.value > 0.0 && m.value > m.upper - m.value; };
     if (clear(now_split) && clear(before_split))
-      ratio = std::clamp(std::sqrt(before_split.value / now_split.value), kSlowestStageRatio, g);
+      ratio = std::clamp(std::sqrt(before_split.value / now_split.value), std::sqrt(g), g);
   }
   const double scale = 1.0 / ((ratio - 1.0) * (ratio - 1.0));
   const MeanEstimate rel_split = mean_with_upper(bias_rel, w, h);

@@ -17,9 +17,12 @@
 //
 // The plain estimator does not take p on trust where the N/64 stage is there too: the bias's
 // RMS one stage earlier, from the same split of L_{N/8} - L_{N/64}, over this stage's gives the
-// measured ratio g' (on the ring's caustic lines about 1.4, not 2). The bound uses
-// min(g, max(g', kSlowestStageRatio)): a bias that falls more slowly is a larger bias for the same
-// D. (Richardson would need N/512 to measure its residual's rate; it keeps g.)
+// measured ratio g'. The bound uses g' between sqrt(g) and g: a bias that falls more slowly is a
+// larger bias for the same D. p is the order of R^2 (a kernel estimate's blur where the radiance
+// is smooth); at a discontinuity, an edge or a caustic line thinner than R, the blur is of order
+// R, i.e. p/2, and nothing falls more slowly than that once the radius has begun to shrink. A g'
+// below sqrt(g) comes from the first stages (N/64 of 2048 is 32 passes), before that regime.
+// (Richardson would need N/512 to measure its residual's rate; it keeps g.)
 //
 // In both, the reference is (X_A + X_B) / 2 and, per channel value,
 //   noise^2 = (X_A - X_B)^2 / 4                                   (unbiased for Var of the mean),
@@ -52,9 +55,7 @@ ReferenceEstimator parse_estimator(const std::string& name);
 /// The ratio of stages between checkpoints: N, N/8, N/64.
 inline constexpr int kStageRatio = 8;
 
-/// The slowest fall of the bias per kStageRatio stages that a measured rate may stand for (1/8
-/// less bias per 8x the stages, an order of 0.057); slower still is reported at this rate.
-inline constexpr double kSlowestStageRatio = 1.125;
+
 
 /// Checkpoints an estimator needs below N: 1 (N/8) for plain, 2 (also N/64) for Richardson.
 int estimator_depth(ReferenceEstimator e);
