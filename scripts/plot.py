@@ -701,7 +701,7 @@ def plot_fronts(doc, out_dir):
             if floor and floor > 0:
                 # How far the front lies above it: the target is 10x (docs/accuracy.md).
                 ratio = front.get("floor_ratio")
-                label = "reference floor" + (f" (smallest error {ratio:.2g}x above; 10x asked)" if ratio else "")
+                label = "reference floor" + (f" (smallest error {ratio:.2g}x it; 10x asked)" if ratio else "")
                 stopping = front.get("reference", {}).get("stopping")
                 if stopping:
                     label += f"\nreference stopped by {stopping.get('stopped_by', '?')}"
