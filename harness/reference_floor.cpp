@@ -101,15 +101,15 @@ ProgressiveReference progressive_reference(const HalfStages& a, const HalfStages
   ProgressiveReference out;
   out.image = tracer::Image(a.n.width(), a.n.height());
   // Per pixel, summed over its channels: the bias^2 split of this stage's difference D and of
-  // the one before (not yet divided by (g - 1)^2), plain and weighted.
-  std::vector<double> bias(pixels), bias_rel(pixels), before(pixels, 0.0), before_rel(pixels, 0.0);
+  // the one before (not yet divided by (g - 1)^2); this stage's also weighted.
+  std::vector<double> bias(pixels), bias_rel(pixels), before(pixels, 0.0);
   const auto split = [](double da, double db) {
     const double dbar = 0.5 * (da + db);
     return dbar * dbar - 0.25 * (da - db) * (da - db);
   };
   double noise = 0.0, noise_rel = 0.0;
   for (std::size_t i = 0; i < pixels; ++i) {
-    double pixel_bias = 0.0, pixel_bias_rel = 0.0, pixel_before = 0.0, pixel_before_rel = 0.0;
+    double pixel_bias = 0.0, pixel_bias_rel = 0.0, pixel_before = 0.0;
     for (int c = 0; c < 3; ++c) {
       const double xa = now(a, i, c), xb = now(b, i, c);
       const double r = 0.5 * (xa + xb);
@@ -121,16 +121,12 @@ ProgressiveReference progressive_reference(const HalfStages& a, const HalfStages
       noise_rel += w * n2;
       pixel_bias += b2;
       pixel_bias_rel += w * b2;
-      if (measure_rate) {
-        const double b0 = split(a.n8.pixels()[i][c] - a.n64.pixels()[i][c], b.n8.pixels()[i][c] - b.n64.pixels()[i][c]);
-        pixel_before += b0;
-        pixel_before_rel += w * b0;
-      }
+      if (measure_rate)
+        pixel_before += split(a.n8.pixels()[i][c] - a.n64.pixels()[i][c], b.n8.pixels()[i][c] - b.n64.pixels()[i][c]);
     }
     bias[i] = pixel_bias;
     bias_rel[i] = pixel_bias_rel;
     before[i] = pixel_before;
-    before_rel[i] = pixel_before_rel;
   }
   const double values = 3.0 * double(pixels);
   out.noise_mse = noise / values;
