@@ -27,7 +27,7 @@ void* allocate_huge_pages(std::size_t bytes) {
   void* mapped = mmap(nullptr, padded, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
   if (mapped == MAP_FAILED) throw std::bad_alloc();
   const auto start = reinterpret_cast<std::uintptr_t>(mapped);
-  const std::uintptr_t aligned = (start + kHugePageBytes - 1) & ~std::uintptr_t(kHugePageBytes - 1);
+  const std::uintptr_t aligned = round_up(start);
   if (aligned > start) munmap(mapped, aligned - start);
   const std::uintptr_t tail = aligned + length, end = start + padded;
   if (end > tail) munmap(reinterpret_cast<void*>(tail), end - tail);
