@@ -130,6 +130,56 @@ TEST(WideBvh, DepthZeroIsOneLeafAndNodesFillUp) {
   EXPECT_LT(wide.stats().nodes * 3, binary.stats().nodes);
 }
 
+TEST(WideBvh, LeafBoxesAreLeftOutWhenTheShapesFollowAndNothingElseChanges) {
+  const auto boxes = random_boxes(5000, 9);
+  const accel::Bvh8 with(boxes, {}, accel::BuildLimits{});
+  accel::BuildLimits limits;
+  limits.shapes_follow = true;
+  accel::Bvh8 without(boxes, {}, limits);
+  // The same tree, less the primitives' boxes (6 floats each).
+  ASSERT_EQ(without.nodes().size(), with.nodes().size());
+  EXPECT_EQ(std::memcmp(without.nodes().data(), with.nodes().data(), with.nodes().size_bytes()), 0);
+  EXPECT_TRUE(std::ranges::equal(without.prim_ids(), with.prim_ids()));
+  EXPECT_LE(without.stats().memory_bytes + 6 * sizeof(float) * boxes.size(), with.stats().memory_bytes);
+  // Without the attach, its leaves call the leaf function for every primitive, and every ray
+  // still finds the nearest box the other finds.
+  std::mt19937 rng(4);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  const auto hit = [&](std::uint32_t id, accel::Ray& r) {
+    const Aabb& b = boxes[id];
+    float t0 = r.tmin, t1 = r.tmax;
+    for (int a = 0; a < 3; ++a) {
+      const float inv = 1.0f / r.dir[a];
+      float tn = (b.lo[a] - r.org[a]) * inv, tf = (b.hi[a] - r.org[a]) * inv;
+      if (tn > tf) std::swap(tn, tf);
+      t0 = std::max(t0, tn);
+      t1 = std::min(t1, tf);
+    }
+    if (t0 > t1) return false;
+    r.tmax = t0;
+    return true;
+  };
+  int hits = 0;
+  for (int i = 0; i < 2000; ++i) {
+    accel::Ray a;
+    a.org = Vec3(8.0f * u(rng), 8.0f * u(rng), -12.0f);
+    a.dir = Vec3(0.3f * u(rng), 0.3f * u(rng), 1.0f);
+    accel::Ray b = a;
+    with.intersect(a, hit);
+    without.intersect(b, hit);
+    ASSERT_EQ(a.tmax, b.tmax) << "ray " << i;
+    hits += a.tmax < accel::kInfinity ? 1 : 0;
+  }
+  EXPECT_GT(hits, 100);
+  // With the spheres attached both are the same structure.
+  std::vector<accel::SphereShape> spheres(boxes.size());
+  for (std::size_t i = 0; i < boxes.size(); ++i) spheres[i] = {boxes[i].center(), 0.5f * (boxes[i].hi.x - boxes[i].lo.x)};
+  accel::Bvh8 attached(boxes, {}, accel::BuildLimits{});
+  attached.attach_spheres(spheres);
+  without.attach_spheres(spheres);
+  EXPECT_EQ(without.stats().memory_bytes, attached.stats().memory_bytes);
+}
+
 TEST(WideBvh, MemoryBudgetErrorNamesTheKnob) {
   const auto boxes = random_boxes(1000, 7);
   try {

@@ -17,10 +17,12 @@
 namespace tracer {
 
 /// accel::make_accel over `boxes` (geometry.primitive_bounds(), computed once by the caller) with
-/// primitive_overlap(geometry) in the limits, then attach_geometry. Throws knobs::ConfigError.
+/// primitive_overlap(geometry) in the limits, then attach_geometry (which the limits announce:
+/// BuildLimits::shapes_follow). Throws knobs::ConfigError.
 inline accel::AnyAccel build_accel(std::string_view name, const nlohmann::json& params, const Geometry& geometry,
                                    std::span<const accel::Aabb> boxes, accel::BuildLimits limits = {}) {
   limits.overlap = primitive_overlap(geometry);
+  limits.shapes_follow = sphere_only(geometry) || triangle_only(geometry);
   accel::AnyAccel a = accel::make_accel(name, params, boxes, limits);
   attach_geometry(a, geometry);
   return a;

@@ -223,6 +223,17 @@ class Intersector {
   TriangleTest tri_;
 };
 
+/// Every bounded primitive of `geometry` is a sphere (attach_geometry attaches them).
+inline bool sphere_only(const Geometry& geometry) {
+  return geometry.bounded_count() == geometry.spheres.size() && !geometry.spheres.empty();
+}
+
+/// Every bounded primitive of `geometry` is a triangle (attach_geometry attaches them to the
+/// structures that take them).
+inline bool triangle_only(const Geometry& geometry) {
+  return geometry.bounded_count() == geometry.triangles.size() && !geometry.triangles.empty();
+}
+
 /// Gives a structure built over geometry.primitive_bounds() what it needs of the primitives
 /// themselves: the spheres of a sphere-only scene, for structures with SIMD sphere leaves and
 /// embree_points; the triangles of a triangle-only scene, for a structure that tests them itself
@@ -230,13 +241,12 @@ class Intersector {
 /// only for such a structure, into a scratch array on huge pages (accel/huge_pages.h: on a
 /// million triangles its page faults were 5% of a build's time on a VM).
 inline void attach_geometry(accel::AnyAccel& a, const Geometry& geometry) {
-  if (geometry.bounded_count() == geometry.spheres.size() && !geometry.spheres.empty()) {
+  if (sphere_only(geometry)) {
     std::vector<accel::SphereShape, accel::CacheLineAllocator<accel::SphereShape>> shapes;
     shapes.reserve(geometry.spheres.size());
     for (const Sphere& s : geometry.spheres) shapes.push_back({s.center, s.radius});
     accel::attach_spheres(a, shapes);
-  } else if (geometry.bounded_count() == geometry.triangles.size() && !geometry.triangles.empty() &&
-             accel::takes_triangles(a)) {
+  } else if (triangle_only(geometry) && accel::takes_triangles(a)) {
     std::vector<accel::TriangleShape, accel::CacheLineAllocator<accel::TriangleShape>> shapes;
     shapes.reserve(geometry.triangles.size());
     for (const Triangle& t : geometry.triangles) shapes.push_back({t.p0, t.p1, t.p2});

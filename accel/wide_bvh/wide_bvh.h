@@ -713,7 +713,8 @@ class WideBvh {
     }
   }
 
-  void build(std::span<const Aabb> boxes, std::uint64_t budget_bytes);
+  /// The tree over `boxes`, then, with `with_leaf_boxes`, the primitives' boxes beside its leaves.
+  void build(std::span<const Aabb> boxes, std::uint64_t budget_bytes, bool with_leaf_boxes);
   std::uint64_t memory_bytes() const {
     return nodes_.size() * sizeof(Node) + prim_ids_.size() * sizeof(std::uint32_t) + spheres_.memory_bytes() +
            triangles_.memory_bytes() + leaf_boxes_.memory_bytes();

@@ -224,14 +224,14 @@ class WideBuilder {
 template <int W>
 WideBvh<W>::WideBvh(std::span<const Aabb> boxes, const Params& params, const BuildLimits& limits) : params_(params) {
   Params::knobs().validate(params_);
-  build(boxes, memory_budget_bytes(limits));
+  build(boxes, memory_budget_bytes(limits), !limits.shapes_follow);
 }
 
 template <int W>
 WideBvh<W>::WideBvh(std::span<const Aabb> boxes, const Params& params) : WideBvh(boxes, params, BuildLimits{}) {}
 
 template <int W>
-void WideBvh<W>::build(std::span<const Aabb> boxes, std::uint64_t budget_bytes) {
+void WideBvh<W>::build(std::span<const Aabb> boxes, std::uint64_t budget_bytes, bool with_leaf_boxes) {
   const auto start = std::chrono::steady_clock::now();
   const std::uint64_t n = boxes.size();
   // Every inner node has at least two children, so there are fewer inner nodes than
@@ -260,7 +260,7 @@ void WideBvh<W>::build(std::span<const Aabb> boxes, std::uint64_t budget_bytes) 
     });
   }
   nodes_.shrink_to_fit();
-  run_with_build_threads(params_.build_threads, [&] { leaf_boxes_.build(prim_ids_, boxes); });
+  if (with_leaf_boxes) run_with_build_threads(params_.build_threads, [&] { leaf_boxes_.build(prim_ids_, boxes); });
   stats_.nodes = nodes_.size();
   stats_.mean_leaf_prims = stats_.leaves ? double(n) / double(stats_.leaves) : 0.0;
   stats_.memory_bytes = memory_bytes();
