@@ -277,8 +277,12 @@ class BinnedSah {
   /// first plane in (axis, bin) order wins, so the tree does not depend on the SIMD width.
   Split cheapest_plane(const AxisBins& axes, std::uint32_t total, float inv_area) const {
     using Int4 = xsimd::batch<std::int32_t, Float4::arch_type>;
+    // The same lane mask seen as float lanes and as integer lanes (both 4 x 32 bits).
     const auto as_float_mask = [](const Int4::batch_bool_type& m) {
       return Float4::batch_bool_type(_mm_castsi128_ps(__m128i(m)));
+    };
+    const auto as_int_mask = [](const Float4::batch_bool_type& m) {
+      return Int4::batch_bool_type(_mm_castps_si128(__m128(m)));
     };
     Float4 right_cost[kMaxBins];
     SweepBoxes acc;
@@ -308,7 +312,7 @@ class BinnedSah {
       const Float4 cost = trav + (acc.half_areas() * xsimd::batch_cast<float>(n) + right_cost[k]) * inv;
       const auto better = as_float_mask(priced) & (cost < best_cost);
       best_cost = xsimd::select(better, cost, best_cost);
-      best_bin = xsimd::select(Int4::batch_bool_type(_mm_castps_si128(__m128(better))), Int4(k), best_bin);
+      best_bin = xsimd::select(as_int_mask(better), Int4(k), best_bin);
     }
     alignas(16) float costs[4];
     alignas(16) std::int32_t bins[4];
