@@ -5,17 +5,21 @@
 // cores run). scripts/bench_embree runs this beside each pair of renders, so the render's scaling
 // can be read against what the host allowed in the same minute.
 //
-// The load is the render's shape: `--items` items (the render's 3,072 tiles of 1024x768) handed
+// The load has the render's shape: `--items` items (the render's 3,072 tiles of 1024x768) handed
 // out by the tracer's own pool (tracer::parallel_items, started before the clock as the render
-// starts it), each item a dependent chain of `--iterations` steps. With `--working-set-kb 0` a
-// step is a multiply-add in registers (no memory at all); with K > 0 it is a load from a table of
-// K KiB that both threads share, read-only, in a random cycle (a pointer chase: every load waits
-// for the one before, as a traversal's node loads do). On a host whose cores share caches or
-// memory with other tenants, the second ceiling lies below the first. Pairs alternate their order
-// (one thread first, then two first) as the render pairs do.
+// starts it), each item `--iterations` steps of one of three kinds (`--load`):
+// - `registers`: one multiply-add chain, each step waiting for the one before: the core's
+//   latency, no memory, little power;
+// - `vector`: 128 independent multiply-add lanes (the compiler's vectors at the build's ISA): the
+//   core's full throughput, the power a wide load draws (a host may lower both cores' clocks when
+//   both run such a load);
+// - `table`: a load from a table of `--working-set-kb` KiB shared by both threads, read-only, in
+//   a random cycle (a pointer chase: each load waits for the one before, as a traversal's node
+//   loads do); on a host whose cores share caches with other tenants this ceiling falls.
+// Pairs alternate their order (one thread first, then two first) as the render pairs do.
 //
-//   build/bin/thread_ceiling [--pairs 5] [--items 3072] [--iterations 37000] [--working-set-kb 0]
-//                            [--json FILE]
+//   build/bin/thread_ceiling [--load registers|vector|table] [--pairs 5] [--items 3072]
+//                            [--iterations 37000] [--working-set-kb 320] [--json FILE]
 
 #include "tracer/parallel.h"
 
@@ -27,6 +31,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <fstream>
+#include <map>
 #include <numeric>
 #include <random>
 #include <string>
@@ -37,8 +42,9 @@ namespace {
 struct Options {
   int pairs = 5;
   int items = 3072;
+  enum class Load { Registers, Vector, Table } load = Load::Registers;
   int iterations = 37000;
-  int working_set_kb = 0;
+  int working_set_kb = 320;
   std::string json_path;
 };
 
@@ -48,6 +54,20 @@ double chain(int iterations, double seed) {
   double a = seed;
   for (int i = 0; i < iterations; ++i) a = a * 0.999999999 + 1e-9;
   return a;
+}
+
+/// One item at the core's vector throughput: 128 independent lanes (8 AVX-512 or 16 AVX2
+/// registers of chains, enough to keep two 4-cycle multiply-add pipes busy), `iterations` steps
+/// each: about as long as a registers item on this week's machines.
+float lanes(int iterations, float seed) {
+  constexpr int kLanes = 128;
+  float a[kLanes];
+  for (int j = 0; j < kLanes; ++j) a[j] = seed + float(j);
+  for (int i = 0; i < iterations; ++i)
+    for (int j = 0; j < kLanes; ++j) a[j] = a[j] * 0.9999999f + 1e-7f;
+  float sum = 0.0f;
+  for (int j = 0; j < kLanes; ++j) sum += a[j];
+  return sum;
 }
 
 /// One item through memory: `iterations` dependent loads along `next`, a single random cycle.
@@ -72,8 +92,12 @@ double run(const Options& o, int threads, const std::vector<std::uint32_t>& tabl
   tracer::prepare_threads(threads);
   const auto start = std::chrono::steady_clock::now();
   tracer::parallel_items(threads, o.items, [&](int, int item) {
-    sink[std::size_t(item)] = table.empty() ? chain(o.iterations, double(item))
-                                            : chase(o.iterations, table, std::uint32_t(item) % table.size());
+    double& out = sink[std::size_t(item)];
+    switch (o.load) {
+      case Options::Load::Registers: out = chain(o.iterations, double(item)); break;
+      case Options::Load::Vector: out = double(lanes(o.iterations, float(item))); break;
+      case Options::Load::Table: out = chase(o.iterations, table, std::uint32_t(item) % table.size()); break;
+    }
   });
   const auto stop = std::chrono::steady_clock::now();
   return std::chrono::duration<double, std::milli>(stop - start).count();
@@ -83,12 +107,15 @@ double run(const Options& o, int threads, const std::vector<std::uint32_t>& tabl
 
 int main(int argc, char** argv) {
   Options o;
-  CLI::App app{"The host's two-thread ceiling: one and two threads on a load with no memory traffic"};
+  CLI::App app{"The host's two-thread ceiling: one and two threads on a load with nothing to share"};
   app.add_option("--pairs", o.pairs, "pairs of one- and two-thread runs")->check(CLI::Range(1, 1000));
   app.add_option("--items", o.items, "items per run (the render's tiles)")->check(CLI::Range(2, 1 << 20));
-  app.add_option("--iterations", o.iterations, "multiply-adds per item")->check(CLI::Range(1, 100000000));
-  app.add_option("--working-set-kb", o.working_set_kb, "KiB of the shared table each step loads from; 0: none")
-      ->check(CLI::Range(0, 1 << 20));
+  app.add_option("--iterations", o.iterations, "steps per item")->check(CLI::Range(1, 100000000));
+  const std::map<std::string, Options::Load> loads = {
+      {"registers", Options::Load::Registers}, {"vector", Options::Load::Vector}, {"table", Options::Load::Table}};
+  app.add_option("--load", o.load, "registers, vector or table")->transform(CLI::CheckedTransformer(loads));
+  app.add_option("--working-set-kb", o.working_set_kb, "KiB of the shared table of --load table")
+      ->check(CLI::Range(1, 1 << 20));
   app.add_option("--json", o.json_path, "write the pairs here as JSON");
   try {
     app.parse(argc, argv);
@@ -98,8 +125,8 @@ int main(int argc, char** argv) {
     return 2;
   }
 
-  const std::vector<std::uint32_t> table = o.working_set_kb > 0 ? random_cycle(o.working_set_kb)
-                                                                : std::vector<std::uint32_t>{};
+  const std::vector<std::uint32_t> table =
+      o.load == Options::Load::Table ? random_cycle(o.working_set_kb) : std::vector<std::uint32_t>{};
   std::vector<double> sink(std::size_t(o.items), 0.0);
   nlohmann::json pairs = nlohmann::json::array();
   std::vector<double> ratios;
@@ -125,6 +152,9 @@ int main(int argc, char** argv) {
 
   if (!o.json_path.empty()) {
     const nlohmann::json out = {{"items", o.items}, {"iterations", o.iterations},
+                                {"load", o.load == Options::Load::Registers ? "registers"
+                                         : o.load == Options::Load::Vector  ? "vector"
+                                                                            : "table"},
                                 {"working_set_kb", o.working_set_kb}, {"pairs", pairs},
                                 {"median_ratio", median}};
     std::ofstream f(o.json_path);
