@@ -16,39 +16,52 @@ void require_size(const tracer::Image& image, const tracer::Image& like, const c
                                 " image is missing or of another size");
 }
 
-/// The mean per channel value of per-pixel sums `s` (three values each) of a width x height
-/// image, clamped at 0, and its 95% upper bound: that plus 1.96 standard errors. The standard
-/// error comes from the spread of the means of square blocks of pixels (8 x 8 where the image
-/// holds at least 16 of them): neighbouring pixels share photons, so single pixels would
-/// understate it.
-MeanEstimate mean_with_upper(const std::vector<double>& s, int width, int height) {
-  int side = 8;
-  while (side > 1 && ((width + side - 1) / side) * ((height + side - 1) / side) < 16) side /= 2;
+/// The standard error of `mean`, the mean of `s` (width x height values), from the spread of the
+/// means of the square blocks of `side` pixels a side that cover the image.
+double block_standard_error(const std::vector<double>& s, int width, int height, int side, double mean) {
   const int bw = (width + side - 1) / side, bh = (height + side - 1) / side;
   std::vector<double> sum(std::size_t(bw) * std::size_t(bh), 0.0), count(sum.size(), 0.0);
-  double mean = 0.0;
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x) {
-      const double v = s[std::size_t(y) * std::size_t(width) + std::size_t(x)];
       const std::size_t b = std::size_t(y / side) * std::size_t(bw) + std::size_t(x / side);
-      sum[b] += v;
+      sum[b] += s[std::size_t(y) * std::size_t(width) + std::size_t(x)];
       count[b] += 1.0;
-      mean += v;
     }
-  mean /= double(s.size());
   const double blocks = double(sum.size());
+  if (sum.size() < 2) return 0.0;
   double var = 0.0;  // of the block means
   for (std::size_t b = 0; b < sum.size(); ++b) {
     const double m = sum[b] / count[b];
     var += (m - mean) * (m - mean);
   }
-  var = sum.size() > 1 ? var / (blocks - 1.0) : 0.0;
-  const double se = std::sqrt(var / blocks);
-  const double value = std::max(0.0, mean) / 3.0;  // per channel value: each pixel's sum holds three
-  return {value, value + 1.96 * se / 3.0};
+  return std::sqrt(var / (blocks - 1.0) / blocks);
+}
+
+/// How many blocks of `side` pixels cover a width x height image.
+int blocks_of(int side, int width, int height) {
+  return ((width + side - 1) / side) * ((height + side - 1) / side);
 }
 
 }  // namespace
+
+MeanEstimate block_mean_upper(const std::vector<double>& s, int width, int height) {
+  if (width <= 0 || height <= 0 || s.size() != std::size_t(width) * std::size_t(height))
+    throw std::invalid_argument("block_mean_upper: the values do not fill a width x height image");
+  double mean = 0.0;
+  for (double v : s) mean += v;
+  mean /= double(s.size());
+  // Blocking (Flyvbjerg and Petersen 1989): the block means' standard error grows with the block
+  // while blocks are smaller than the values' correlation length, then levels off; the largest
+  // over sides 8, 16, 32, ... (while 16 blocks remain) is the one that does not understate it.
+  // Images too small for 16 blocks of 8 use the largest side that gives 16.
+  int side = 8;
+  while (side > 1 && blocks_of(side, width, height) < kMinBlocks) side /= 2;
+  double se = block_standard_error(s, width, height, side, mean);
+  for (int larger = side * 2; blocks_of(larger, width, height) >= kMinBlocks; larger *= 2)
+    se = std::max(se, block_standard_error(s, width, height, larger, mean));
+  const double value = std::max(0.0, mean) / 3.0;  // per channel value: each pixel's sum holds three
+  return {value, value + 1.96 * se / 3.0};
+}
 
 const char* estimator_name(ReferenceEstimator e) {
   return e == ReferenceEstimator::Plain ? "plain" : "richardson";
@@ -132,20 +145,20 @@ ProgressiveReference progressive_reference(const HalfStages& a, const HalfStages
   out.noise_mse = noise / values;
   out.noise_rel = noise_rel / values;
   const int w = a.n.width(), h = a.n.height();
-  const MeanEstimate now_split = mean_with_upper(bias, w, h);
+  const MeanEstimate now_split = block_mean_upper(bias, w, h);
   // g as measured: the ratio of the two stages' bias (RMS), where both are clearly there (above
   // 1.96 standard errors). It may only lower g below the theory's (a bias falling more slowly
   // makes the same difference D stand for a larger bias), never raise it, and not below sqrt(g),
   // the order of the blur at a discontinuity (the top of reference_floor.h).
   double ratio = g;
   if (measure_rate) {
-    const MeanEstimate before_split = mean_with_upper(before, w, h);
+    const MeanEstimate before_split = block_mean_upper(before, w, h);
     const auto clear = [](const MeanEstimate& m) { return m.value > 0.0 && m.value > m.upper - m.value; };
     if (clear(now_split) && clear(before_split))
       ratio = std::clamp(std::sqrt(before_split.value / now_split.value), std::sqrt(g), g);
   }
   const double scale = 1.0 / ((ratio - 1.0) * (ratio - 1.0));
-  const MeanEstimate rel_split = mean_with_upper(bias_rel, w, h);
+  const MeanEstimate rel_split = block_mean_upper(bias_rel, w, h);
   out.bias_mse = {now_split.value * scale, now_split.upper * scale};
   out.bias_rel = {rel_split.value * scale, rel_split.upper * scale};
   out.bias_order = std::log(ratio) / std::log(double(kStageRatio));

@@ -30,13 +30,15 @@
 // the second the bias/variance split of two seeds applied to D (unbiased; it can be negative per
 // value, and is clamped at 0 only after averaging). The bias's mean over values comes with a 95%
 // upper bound (the clamped mean + 1.96 standard errors), which the floor uses: a floor should err
-// high. Pixels are not independent (one photon lights its neighbours), so the standard error
-// comes from the spread of 8 x 8 blocks' means rather than single pixels'; it is still optimistic
-// where the bias sits in a few blobs larger than a block.
+// high. Pixels are not independent (one photon lights its neighbours, and the bias sits in
+// blobs along the caustics), so the standard error comes from the spread of blocks' means rather
+// than single pixels': the largest over blocks of 8, 16, 32, ... pixels a side while 16 blocks
+// remain (block_mean_upper). It can still understate where the bias sits in fewer blobs than that.
 
 #include "tracer/image.h"
 
 #include <string>
+#include <vector>
 
 namespace harness {
 
@@ -76,6 +78,16 @@ struct MeanEstimate {
   double value = 0.0;  ///< The estimate (clamped at 0).
   double upper = 0.0;  ///< Its 95% upper bound: value + 1.96 standard errors of the mean.
 };
+
+/// Blocks a standard error needs at least: fewer give too rough a spread.
+inline constexpr int kMinBlocks = 16;
+
+/// The mean per channel value of per-pixel sums `s` (three channel values each) of a width x
+/// height image, clamped at 0, and its 95% upper bound: that plus 1.96 standard errors, the
+/// largest standard error of the means of square blocks of 8, 16, 32, ... pixels a side that
+/// still make kMinBlocks blocks (smaller sides where 8 does not). Throws std::invalid_argument
+/// when `s` does not hold width x height values.
+MeanEstimate block_mean_upper(const std::vector<double>& s, int width, int height);
 
 /// A progressive reference and its own error.
 struct ProgressiveReference {

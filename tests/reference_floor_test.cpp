@@ -148,6 +148,49 @@ TEST(ReferenceFloor, RichardsonOverestimatesWhatAFasterTermLeaves) {
   EXPECT_NEAR(estimate, (g + 1.0) * residual, 0.1 * (g + 1.0) * residual);
 }
 
+/// A 160 x 120 field of per-pixel values (as the fronts' references are): mean mu, plus a
+/// value shared by every pixel of each `blob` x `blob` square (a bias that sits in blobs), plus
+/// a little noise of each pixel's own.
+std::vector<double> blob_field(double mu, int blob, std::uint32_t seed) {
+  constexpr int w = 160, h = 120;
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> z(0.0, 1.0);
+  const int bw = (w + blob - 1) / blob, bh = (h + blob - 1) / blob;
+  std::vector<double> shared(std::size_t(bw) * std::size_t(bh));
+  for (double& v : shared) v = z(rng);
+  std::vector<double> s(std::size_t(w) * std::size_t(h));
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      s[std::size_t(y) * w + std::size_t(x)] = mu + shared[std::size_t(y / blob) * std::size_t(bw) + std::size_t(x / blob)] +
+                                                 0.1 * z(rng);
+  return s;
+}
+
+// Where the values are correlated over 32 x 32 blobs, 8 x 8 blocks see 16 times too many
+// independent pieces and their standard error is about 4x too small: the 95% bound of their mean
+// fell below the true mean in about a third of the fields. The bound takes the largest standard
+// error over block sides 8, 16 and 32 (20 blocks of 32 at 160 x 120), so it holds about as often
+// as a 95% bound from 20 blocks should.
+TEST(ReferenceFloor, TheBoundHoldsWhereTheValuesShareBlobsLargerThanABlock) {
+  constexpr double mu = 6.0;  // 2 per channel value
+  int below = 0, trials = 400;
+  for (int t = 0; t < trials; ++t) {
+    const harness::MeanEstimate m = harness::block_mean_upper(blob_field(mu, 32, std::uint32_t(100 + t)), 160, 120);
+    if (m.upper < mu / 3.0) ++below;
+  }
+  EXPECT_LE(below, trials / 10) << below << " of " << trials << " bounds below the true mean";
+}
+
+// Without correlation beyond a pixel the larger blocks change little: the bound stays about as
+// tight as single pixels' spread would make it.
+TEST(ReferenceFloor, TheBoundStaysTightWhereThePixelsAreIndependent) {
+  const std::vector<double> s = blob_field(6.0, 1, 7);  // every pixel its own "blob"
+  const harness::MeanEstimate m = harness::block_mean_upper(s, 160, 120);
+  const double pixel_se = 1.005 / std::sqrt(160.0 * 120.0) / 3.0;  // sqrt(1 + 0.1^2) per pixel
+  EXPECT_NEAR(m.upper - m.value, 1.96 * pixel_se, 0.6 * 1.96 * pixel_se);
+  EXPECT_THROW(harness::block_mean_upper(s, 160, 119), std::invalid_argument);
+}
+
 TEST(ReferenceFloor, BadInputIsRefused) {
   const Synthetic s(0.0, 0.5, 10);
   harness::HalfStages a = s.half(11), b = s.half(12);
