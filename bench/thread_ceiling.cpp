@@ -48,6 +48,17 @@ struct Options {
   std::string json_path;
 };
 
+/// The loads by their flag names.
+const std::map<std::string, Options::Load> kLoads = {
+    {"registers", Options::Load::Registers}, {"vector", Options::Load::Vector}, {"table", Options::Load::Table}};
+
+/// The flag name of `load`.
+std::string load_name(Options::Load load) {
+  for (const auto& [name, value] : kLoads)
+    if (value == load) return name;
+  return "?";
+}
+
 /// One item without memory: a multiply-add chain whose every step waits for the one before, so
 /// the core's time is the chain's latency and nothing else (no loads, no stores but the result).
 double chain(int iterations, double seed) {
@@ -111,9 +122,7 @@ int main(int argc, char** argv) {
   app.add_option("--pairs", o.pairs, "pairs of one- and two-thread runs")->check(CLI::Range(1, 1000));
   app.add_option("--items", o.items, "items per run (the render's tiles)")->check(CLI::Range(2, 1 << 20));
   app.add_option("--iterations", o.iterations, "steps per item")->check(CLI::Range(1, 100000000));
-  const std::map<std::string, Options::Load> loads = {
-      {"registers", Options::Load::Registers}, {"vector", Options::Load::Vector}, {"table", Options::Load::Table}};
-  app.add_option("--load", o.load, "registers, vector or table")->transform(CLI::CheckedTransformer(loads));
+  app.add_option("--load", o.load, "registers, vector or table")->transform(CLI::CheckedTransformer(kLoads));
   app.add_option("--working-set-kb", o.working_set_kb, "KiB of the shared table of --load table")
       ->check(CLI::Range(1, 1 << 20));
   app.add_option("--json", o.json_path, "write the pairs here as JSON");
@@ -152,9 +161,7 @@ int main(int argc, char** argv) {
 
   if (!o.json_path.empty()) {
     const nlohmann::json out = {{"items", o.items}, {"iterations", o.iterations},
-                                {"load", o.load == Options::Load::Registers ? "registers"
-                                         : o.load == Options::Load::Vector  ? "vector"
-                                                                            : "table"},
+                                {"load", load_name(o.load)},
                                 {"working_set_kb", o.working_set_kb}, {"pairs", pairs},
                                 {"median_ratio", median}};
     std::ofstream f(o.json_path);
