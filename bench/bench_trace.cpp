@@ -717,6 +717,7 @@ struct Config {
   std::string name;
   json knobs;
   std::vector<std::string> knob_names;  ///< Every knob the structure has.
+  bool meshes_only = false;             ///< A row for the mesh scenes only.
 
   bool has_knob(const std::string& k) const {
     return std::find(knob_names.begin(), knob_names.end(), k) != knob_names.end();
@@ -741,6 +742,12 @@ std::vector<Config> trace_configs() {
       out.push_back({s.name + "_robust", s.name, table.changed_json(robust), s.knobs});
       out.push_back({s.name + "_high", s.name, table.changed_json(high), s.knobs});
     }
+    // Spatial splits (SBVH) in our 8-wide BVH, against its plain build, on the meshes.
+    if (s.name == accel::Bvh8::kName) {
+      accel::Bvh8::Params spatial;
+      spatial.spatial_split_budget = 0.25f;
+      out.push_back({s.name + "_spatial", s.name, accel::Bvh8::Params::knobs().changed_json(spatial), s.knobs, true});
+    }
     for (const json& k : s.knob_table) {
       if (!k.at("variant").get<bool>() || !k.contains("choices")) continue;
       for (const json& c : k.at("choices"))
@@ -755,7 +762,7 @@ std::vector<Config> trace_configs() {
 std::vector<Config> tree_configs() {
   std::vector<Config> out;
   for (const Config& c : trace_configs())
-    if (c.has_knob("max_depth") && c.has_knob("max_leaf_size")) out.push_back(c);
+    if (c.has_knob("max_depth") && c.has_knob("max_leaf_size") && !c.meshes_only) out.push_back(c);
   return out;
 }
 
@@ -776,6 +783,10 @@ bool applies(const std::string& structure, bool mesh_scene) {
   return info->native_shapes == (mesh_scene ? "triangles" : "spheres");
 }
 
+/// Whether a configuration gets a row on a scene: its structure applies and, for a meshes-only
+/// row, the scene is a mesh.
+bool applies(const Config& c, bool mesh_scene) { return (mesh_scene || !c.meshes_only) && applies(c.name, mesh_scene); }
+
 /// The mesh scenes this run has (none without ../shared/meshes, with a message).
 std::vector<std::string> available_mesh_scenes() {
   try {
@@ -794,7 +805,7 @@ void register_benchmarks() {
   for (const std::string& scene : trace_scenes)
     for (RaySet set : {RaySet::Coherent, RaySet::Packets, RaySet::Incoherent, RaySet::Shadow})
       for (const Config& c : trace_configs()) {
-        if (!applies(c.name, is_mesh_scene(scene))) continue;
+        if (!applies(c, is_mesh_scene(scene))) continue;
         const std::string bm = "Trace/" + scene + "/" + ray_set_name(set) + "/" + c.label;
         timed_ms(benchmark::RegisterBenchmark(bm.c_str(), bm_trace, scene, set, c.name, c.knobs));
       }
@@ -817,7 +828,7 @@ void register_benchmarks() {
     if (s.peer && s.built) peers.push_back(s.name);
   for (const RenderCase& rc : renders)
     for (const Config& c : configs) {
-      if (c.name == "naive" || !applies(c.name, is_mesh_scene(rc.label))) continue;  // naive: hours per render
+      if (c.name == "naive" || !applies(c, is_mesh_scene(rc.label))) continue;  // naive: hours per render
       const std::string bm = "Render/" + rc.label + "/" + c.label;
       timed_ms(benchmark::RegisterBenchmark(bm.c_str(), bm_render, rc, c.name, c.knobs)
           ->UseManualTime()
@@ -849,7 +860,7 @@ void register_benchmarks() {
   for (const std::string& scene : build_scenes)
     for (const Config& c : trace_configs()) {
       const bool large = scene != "spheres8000";
-      if (!applies(c.name, is_mesh_scene(scene)) ||
+      if (!applies(c, is_mesh_scene(scene)) ||
           (large && c.name != "bvh" && c.name != "bvh4" && c.name != "bvh8" && c.name != "embree" &&
            c.name != "embree_triangles"))
         continue;

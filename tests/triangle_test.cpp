@@ -12,6 +12,7 @@
 #include "accel/bvh.h"
 #include "accel/triangle_hit.h"
 #include "accel/triangle_soa.h"
+#include "accel/wide_bvh/wide_bvh.h"
 
 #include <gtest/gtest.h>
 
@@ -21,6 +22,7 @@
 #include <cstdio>
 #include <map>
 #include <random>
+#include <string>
 
 namespace {
 
@@ -432,6 +434,43 @@ std::vector<std::vector<accel::Aabb>> leaf_boxes_by_primitive(const accel::Bvh& 
   return out;
 }
 
+/// The boxes (as the node stores them, padded) of the leaves of a wide BVH that reference each
+/// primitive.
+template <int W>
+std::vector<std::vector<accel::Aabb>> leaf_boxes_by_primitive(const accel::WideBvh<W>& bvh, std::size_t primitives) {
+  std::vector<std::vector<accel::Aabb>> out(primitives);
+  for (const accel::WideNode<W>& n : bvh.nodes())
+    for (int i = 0; i < W; ++i) {
+      if (n.count[i] == 0) continue;
+      const accel::Aabb box{{n.planes[0][i], n.planes[2][i], n.planes[4][i]}, {n.planes[1][i], n.planes[3][i], n.planes[5][i]}};
+      for (std::uint32_t k = n.child[i]; k < n.child[i] + n.count[i]; ++k) out[bvh.prim_ids()[k]].push_back(box);
+    }
+  return out;
+}
+
+/// Samples each triangle of `g` (its vertices included) and asserts that every sample lies in
+/// the box of some leaf that references the triangle (`leaves`, by primitive).
+void expect_every_point_in_a_leaf_holding_it(const tracer::Geometry& g,
+                                             const std::vector<std::vector<accel::Aabb>>& leaves,
+                                             const std::string& label) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> w(0.0f, 1.0f);
+  for (std::size_t id = 0; id < g.triangles.size(); ++id) {
+    const tracer::Triangle& t = g.triangles[id];
+    ASSERT_FALSE(leaves[id].empty()) << label << ": triangle " << id << " is in no leaf";
+    for (int k = 0; k < 64; ++k) {
+      float a = w(rng), b = w(rng);
+      if (a + b > 1.0f) a = 1.0f - a, b = 1.0f - b;
+      // Corners and edges included: the samples end on the vertices.
+      if (k < 3) a = float(k == 1), b = float(k == 2);
+      const Vec3 q = t.p0 + a * (t.p1 - t.p0) + b * (t.p2 - t.p0);
+      const bool held = std::any_of(leaves[id].begin(), leaves[id].end(),
+                                    [&](const accel::Aabb& box) { return box.contains(accel::Aabb::of_point(q)); });
+      ASSERT_TRUE(held) << label << ": triangle " << id << ", sample " << k;
+    }
+  }
+}
+
 TEST(SpatialSplits, EveryPointOfATriangleLiesInALeafThatHoldsIt) {
   const tracer::Geometry g = small_and_long_triangles(3000, 100);
   const auto boxes = g.primitive_bounds();
@@ -446,23 +485,39 @@ TEST(SpatialSplits, EveryPointOfATriangleLiesInALeafThatHoldsIt) {
   EXPECT_GT(s.prim_refs, boxes.size() + boxes.size() / 10) << "the splits cut few triangles";
   EXPECT_LE(s.prim_refs, 2 * boxes.size()) << "over the budget";
   EXPECT_EQ(s.nodes, 2 * s.leaves - 1);
-  const auto leaves = leaf_boxes_by_primitive(bvh, boxes.size());
-  std::mt19937 rng(3);
-  std::uniform_real_distribution<float> w(0.0f, 1.0f);
-  for (std::size_t id = 0; id < boxes.size(); ++id) {
-    const tracer::Triangle& t = g.triangles[id];
-    ASSERT_FALSE(leaves[id].empty()) << "triangle " << id << " is in no leaf";
-    for (int k = 0; k < 64; ++k) {
-      float a = w(rng), b = w(rng);
-      if (a + b > 1.0f) a = 1.0f - a, b = 1.0f - b;
-      // Corners and edges included: the samples end on the vertices.
-      if (k < 3) a = float(k == 1), b = float(k == 2);
-      const Vec3 q = t.p0 + a * (t.p1 - t.p0) + b * (t.p2 - t.p0);
-      const bool held = std::any_of(leaves[id].begin(), leaves[id].end(),
-                                    [&](const accel::Aabb& box) { return box.contains(accel::Aabb::of_point(q)); });
-      ASSERT_TRUE(held) << "triangle " << id << ", sample " << k;
-    }
+  expect_every_point_in_a_leaf_holding_it(g, leaf_boxes_by_primitive(bvh, boxes.size()), "bvh");
+}
+
+template <int W>
+void expect_wide_spatial_splits_hold_every_triangle_and_lower_the_sah_cost() {
+  const tracer::Geometry g = small_and_long_triangles(3000, 100);
+  const auto boxes = g.primitive_bounds();
+  accel::BuildLimits limits;
+  limits.overlap = tracer::primitive_overlap(g);
+  const accel::WideBvh<W> plain(boxes, {}, limits);
+  // The depth limit applies to the collapsed tree: a leaf there takes its binary subtree's refs.
+  for (int depth : {64, 2, 1}) {
+    accel::WideBvhParams<W> p;
+    p.spatial_split_budget = 0.5f;
+    p.max_depth = depth;
+    const accel::WideBvh<W> bvh(boxes, p, limits);
+    const accel::BuildStats& s = bvh.stats();
+    const std::string label = std::string(accel::WideBvh<W>::kName) + " max_depth " + std::to_string(depth);
+    std::printf("%s: %llu references to %zu triangles, %llu leaves, depth %d, SAH cost %.2f (%.2f without spatial splits)\n",
+                label.c_str(), static_cast<unsigned long long>(s.prim_refs), boxes.size(),
+                static_cast<unsigned long long>(s.leaves), s.max_depth_reached, s.sah_cost, plain.stats().sah_cost);
+    EXPECT_EQ(s.prim_refs, bvh.prim_ids().size());
+    EXPECT_GT(s.prim_refs, boxes.size() + boxes.size() / 20) << label << ": the splits cut few triangles";
+    EXPECT_LE(double(s.prim_refs), std::floor(double(boxes.size()) * 1.5)) << label << ": over the budget";
+    EXPECT_LE(s.max_depth_reached, depth) << label;
+    if (depth == 64) EXPECT_LT(s.sah_cost, 0.8 * plain.stats().sah_cost) << label;
+    expect_every_point_in_a_leaf_holding_it(g, leaf_boxes_by_primitive(bvh, boxes.size()), label);
   }
+}
+
+TEST(SpatialSplits, TheWideBvhsCollapseTheSplitTreeAndKeepEveryTriangle) {
+  expect_wide_spatial_splits_hold_every_triangle_and_lower_the_sah_cost<4>();
+  expect_wide_spatial_splits_hold_every_triangle_and_lower_the_sah_cost<8>();
 }
 
 TEST(SpatialSplits, LowerTheSahCostOfLongTrianglesAmongSmallOnesWithinTheBudget) {

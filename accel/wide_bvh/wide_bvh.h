@@ -3,7 +3,8 @@
 // tested against the ray in one SIMD step; closest-hit traversal visits the children front to
 // back by entry distance, the any-hit traversal (shadow rays) in node order with no sorting and
 // leaves first. Built directly by binned SAH (wide_bvh_builder.cpp): a node takes its range's
-// SAH split, then keeps splitting its largest child until it has W. Leaves may hold their
+// SAH split, then keeps splitting its largest child until it has W; or, with spatial splits, as
+// the binary BVH's SBVH collapsed into the same shape (wide_bvh_spatial.cpp). Leaves may hold their
 // spheres (sphere_soa.h) or triangles (triangle_soa.h) structure-of-arrays, tested several at a
 // time by the leaf function's own routine.
 
@@ -68,6 +69,9 @@ struct WideBvhParams {
   float traversal_cost = 3.0f;
   /// Threads the build may use (0 = every core). The tree is the same at any count.
   int build_threads = 1;
+  /// Extra references per primitive that spatial splits may add (0: none): the binary BVH's
+  /// spatial-split build, collapsed into wide nodes (wide_bvh_spatial.cpp), on one thread.
+  float spatial_split_budget = 0.0f;
 
   /// Name, range, unit and doc line of every knob above.
   static const knobs::KnobTable<WideBvhParams>& knobs();
@@ -714,7 +718,11 @@ class WideBvh {
   }
 
   /// The tree over `boxes`, then, with `with_leaf_boxes`, the primitives' boxes beside its leaves.
-  void build(std::span<const Aabb> boxes, std::uint64_t budget_bytes, bool with_leaf_boxes);
+  void build(std::span<const Aabb> boxes, std::uint64_t budget_bytes, bool with_leaf_boxes,
+             const PrimitiveOverlap& overlap);
+  /// The nodes, prim_ids_ and the tree's counts in stats_ by a spatial-split build of at most
+  /// `max_refs` references (wide_bvh_spatial.cpp).
+  void build_spatial(std::span<const Aabb> boxes, const PrimitiveOverlap& overlap, std::uint64_t max_refs);
   std::uint64_t memory_bytes() const {
     return nodes_.size() * sizeof(Node) + prim_ids_.size() * sizeof(std::uint32_t) + spheres_.memory_bytes() +
            triangles_.memory_bytes() + leaf_boxes_.memory_bytes();

@@ -43,7 +43,10 @@ const knobs::KnobTable<WideBvhParams<W>>& WideBvhParams<W>::knobs() {
            .probes({0.1, 1000.0}),
        K::integer(kBuildThreadsKnob, &P::build_threads, 0, 1024, "threads",
                   "Threads the build may use (0 = every core); the tree is the same at any count.")
-           .probes({2})});
+           .probes({2}),
+       K::number("spatial_split_budget", &P::spatial_split_budget, 0.0, 4.0, "references per primitive",
+                 "Extra references spatial splits (SBVH) may add per primitive; 0: none. Builds on one thread.")
+           .probes({0.25, 4.0})});
   return table;
 }
 
@@ -224,33 +227,41 @@ class WideBuilder {
 template <int W>
 WideBvh<W>::WideBvh(std::span<const Aabb> boxes, const Params& params, const BuildLimits& limits) : params_(params) {
   Params::knobs().validate(params_);
-  build(boxes, memory_budget_bytes(limits), !limits.shapes_follow);
+  build(boxes, memory_budget_bytes(limits), !limits.shapes_follow, limits.overlap);
 }
 
 template <int W>
 WideBvh<W>::WideBvh(std::span<const Aabb> boxes, const Params& params) : WideBvh(boxes, params, BuildLimits{}) {}
 
 template <int W>
-void WideBvh<W>::build(std::span<const Aabb> boxes, std::uint64_t budget_bytes, bool with_leaf_boxes) {
+void WideBvh<W>::build(std::span<const Aabb> boxes, std::uint64_t budget_bytes, bool with_leaf_boxes,
+                       const PrimitiveOverlap& overlap) {
   const auto start = std::chrono::steady_clock::now();
   const std::uint64_t n = boxes.size();
+  const bool spatial = params_.spatial_split_budget > 0.0f;
+  // Spatial splits may reference a primitive from several leaves, up to the budget.
+  const std::uint64_t refs = spatial ? n + std::uint64_t(double(n) * double(params_.spatial_split_budget)) : n;
   // Every inner node has at least two children, so there are fewer inner nodes than
-  // primitives; the builder also holds one reference per primitive while it runs.
-  // The primitives' padded boxes in leaf order take 6 floats each.
-  const std::uint64_t bytes = std::max<std::uint64_t>(n, 1) * sizeof(Node) +
-                              n * (sizeof(std::uint32_t) + BinnedSah::kBytesPerPrimitive + 6 * sizeof(float));
+  // references; the builder also holds one reference per primitive while it runs (the spatial
+  // one its binary tree too, 2r nodes, and a box and an id per reference, the node's and its
+  // children's). The primitives' padded boxes in leaf order take 6 floats each.
+  const std::uint64_t scratch = spatial ? 2 * sizeof(BvhNode) + 2 * sizeof(Aabb) + 8 : BinnedSah::kBytesPerPrimitive;
+  const std::uint64_t bytes = std::max<std::uint64_t>(refs, 1) * sizeof(Node) +
+                              refs * (sizeof(std::uint32_t) + scratch + 6 * sizeof(float));
   if (bytes > budget_bytes)
     throw knobs::ConfigError(std::string(kName) + ": " + std::to_string(n) + " primitives need up to " + std::to_string(bytes) +
                       " bytes, over the memory budget of " + std::to_string(budget_bytes) +
                       " bytes (raise --max-memory)");
   nodes_.clear();
-  prim_ids_.resize(n);  // the builder writes them in leaf order (BinnedSah::copy_ids)
+  prim_ids_.clear();
   spheres_ = {};
   leaf_boxes_.clear();
   stats_ = {};
   stats_.primitives = n;
-  stats_.prim_refs = n;
-  if (n > 0) {
+  if (n > 0 && spatial) {
+    build_spatial(boxes, overlap, refs);
+  } else if (n > 0) {
+    prim_ids_.resize(n);  // the builder writes them in leaf order (BinnedSah::copy_ids)
     run_with_build_threads(params_.build_threads, [&] {
       WideBuilder<W> builder(boxes, params_, std::max<std::uint64_t>(n, 1) + 1);
       const BuildTally tally = builder.run(std::uint32_t(n));
@@ -260,9 +271,11 @@ void WideBvh<W>::build(std::span<const Aabb> boxes, std::uint64_t budget_bytes, 
     });
   }
   nodes_.shrink_to_fit();
+  prim_ids_.shrink_to_fit();
+  stats_.prim_refs = prim_ids_.size();
   if (with_leaf_boxes) run_with_build_threads(params_.build_threads, [&] { leaf_boxes_.build(prim_ids_, boxes); });
   stats_.nodes = nodes_.size();
-  stats_.mean_leaf_prims = stats_.leaves ? double(n) / double(stats_.leaves) : 0.0;
+  stats_.mean_leaf_prims = stats_.leaves ? double(prim_ids_.size()) / double(stats_.leaves) : 0.0;
   stats_.memory_bytes = memory_bytes();
   stats_.build_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
