@@ -5,6 +5,7 @@
 // children as parallel tasks (build_tasks.h); the tree is the same at any thread count.
 
 #include "wide_bvh.h"
+#include "wide_node_fill.h"
 
 #include "accel/accel.h"
 #include "accel/binned_sah.h"
@@ -187,26 +188,13 @@ class WideBuilder {
     Node n;
     for (int i = 0; i < W; ++i) {
       if (i >= k) {
-        for (int a = 0; a < 3; ++a) {
-          n.planes[2 * a][i] = kInfinity;
-          n.planes[2 * a + 1][i] = -kInfinity;
-        }
-        n.child[i] = 0;
-        n.count[i] = 0;
+        clear_slot(n, i);
         continue;
       }
       const Range& kid = kids[i];
-      for (int a = 0; a < 3; ++a) {
-        const float pad = box_pad(kid.box.lo[a], kid.box.hi[a]);
-        n.planes[2 * a][i] = kid.box.lo[a] - pad;
-        n.planes[2 * a + 1][i] = kid.box.hi[a] + pad;
-      }
+      set_slot_box(n, i, kid.box);
       if (kid.leaf) {
-        n.child[i] = kid.begin;
-        n.count[i] = kid.end - kid.begin;
-        tally.leaves++;
-        tally.max_leaf_prims = std::max<std::uint64_t>(tally.max_leaf_prims, kid.end - kid.begin);
-        tally.sah += double(kid.area) * double(kid.end - kid.begin);
+        set_leaf_slot(n, i, kid.begin, kid.end, kid.area, tally);
       } else {
         n.child[i] = next++;
         n.count[i] = 0;

@@ -6,11 +6,11 @@
 // test whole primitives, which is correct wherever a ray meets them.
 
 #include "wide_bvh.h"
+#include "wide_node_fill.h"
 
 #include "accel/accel.h"
 #include "accel/build_tasks.h"
 #include "accel/bvh.h"
-#include "accel/interval_slack.h"
 #include "accel/spatial_split_builder.h"
 
 #include <algorithm>
@@ -19,9 +19,8 @@
 namespace accel {
 namespace {
 
-float half_area_of(const BvhNode& b) {
-  return Aabb{{b.lo[0], b.lo[1], b.lo[2]}, {b.hi[0], b.hi[1], b.hi[2]}}.half_area();
-}
+Aabb box_of(const BvhNode& b) { return {{b.lo[0], b.lo[1], b.lo[2]}, {b.hi[0], b.hi[1], b.hi[2]}}; }
+float half_area_of(const BvhNode& b) { return box_of(b).half_area(); }
 
 template <int W, class Nodes>
 class Collapser {
@@ -101,27 +100,12 @@ class Collapser {
     typename Nodes::value_type n;
     for (int i = 0; i < W; ++i) {
       if (i >= k) {
-        for (int a = 0; a < 3; ++a) {
-          n.planes[2 * a][i] = kInfinity;
-          n.planes[2 * a + 1][i] = -kInfinity;
-        }
-        n.child[i] = 0;
-        n.count[i] = 0;
+        clear_slot(n, i);
         continue;
       }
-      const BvhNode& b = bin_[kids[i].node];
-      for (int a = 0; a < 3; ++a) {
-        const float pad = box_pad(b.lo[a], b.hi[a]);
-        n.planes[2 * a][i] = b.lo[a] - pad;
-        n.planes[2 * a + 1][i] = b.hi[a] + pad;
-      }
+      set_slot_box(n, i, box_of(bin_[kids[i].node]));
       if (kids[i].leaf) {
-        const std::uint32_t begin = range_begin(kids[i].node), end = range_end(kids[i].node);
-        n.child[i] = begin;
-        n.count[i] = end - begin;
-        tally.leaves++;
-        tally.max_leaf_prims = std::max<std::uint64_t>(tally.max_leaf_prims, end - begin);
-        tally.sah += double(kids[i].area) * double(end - begin);
+        set_leaf_slot(n, i, range_begin(kids[i].node), range_end(kids[i].node), kids[i].area, tally);
       } else {
         n.child[i] = next++;
         n.count[i] = 0;
