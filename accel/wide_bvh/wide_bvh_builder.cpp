@@ -137,9 +137,7 @@ class WideBuilder {
     split(whole, kids[0], kids[1], tally);
     int k = 2;
     while (k < W) {
-      int widest = -1;
-      for (int i = 0; i < k; ++i)
-        if (!kids[i].leaf && (widest < 0 || kids[i].area > kids[widest].area)) widest = i;
+      const int widest = widest_inner_child(kids, k);
       if (widest < 0) break;
       const Range opened = kids[widest];
       split(opened, kids[widest], kids[k], tally);

@@ -75,9 +75,7 @@ class Collapser {
     kids[1] = kid(bin_[b].first + 1, depth + 1, tally);
     int k = 2;
     while (k < W) {
-      int widest = -1;
-      for (int i = 0; i < k; ++i)
-        if (!kids[i].leaf && (widest < 0 || kids[i].area > kids[widest].area)) widest = i;
+      const int widest = widest_inner_child(kids, k);
       if (widest < 0) break;
       const std::uint32_t opened = kids[widest].node;
       kids[widest] = kid(bin_[opened].first, depth + 1, tally);

@@ -12,6 +12,17 @@
 
 namespace accel {
 
+/// The child a node opens next while it has fewer than W: the one of largest surface area
+/// among those that are not leaves (`area`, `leaf`); -1 when every child is a leaf. The rule that
+/// collapses a binary SAH tree into a wide one, for both builders.
+template <class Kid>
+int widest_inner_child(const Kid* kids, int k) {
+  int widest = -1;
+  for (int i = 0; i < k; ++i)
+    if (!kids[i].leaf && (widest < 0 || kids[i].area > kids[widest].area)) widest = i;
+  return widest;
+}
+
 /// Slot i of `n` unused: an empty box (+inf, -inf), which no ray enters.
 template <int W>
 void clear_slot(WideNode<W>& n, int i) {
