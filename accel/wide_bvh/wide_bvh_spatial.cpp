@@ -14,7 +14,6 @@
 #include "accel/spatial_split_builder.h"
 
 #include <algorithm>
-#include <string>
 
 namespace accel {
 namespace {
@@ -35,7 +34,6 @@ class Collapser {
     nodes_.resize(1);
     if (bin_[0].is_leaf() || max_depth_ <= 0) {
       // One leaf holds everything: the root node has that leaf as its only child.
-      tally.sah += double(half_area_of(bin_[0]));
       const Kid root{0, half_area_of(bin_[0]), true};
       write(0, &root, 1, tally);
       return tally;
