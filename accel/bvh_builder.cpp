@@ -136,7 +136,7 @@ void Bvh::build(std::span<const Aabb> boxes, std::uint64_t max_memory_bytes, con
   const std::uint64_t n = boxes.size();
   const bool spatial = params_.spatial_split_budget > 0.0f;
   // Spatial splits may reference a primitive from several leaves, up to the budget.
-  const std::uint64_t max_refs = spatial ? n + std::uint64_t(double(n) * double(params_.spatial_split_budget)) : n;
+  const std::uint64_t max_refs = spatial_split_max_refs(n, params_.spatial_split_budget);
   const std::uint64_t node_bound = max_refs ? 2 * max_refs : 0;  // 2r - 1 nodes and the unused one
   // The builder also holds one reference per primitive while it runs (the spatial one a box and
   // an id per reference, the node's and its children's).

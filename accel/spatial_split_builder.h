@@ -16,6 +16,12 @@
 
 namespace accel {
 
+/// The most references a spatial-split build over `n` primitives may make: n plus `budget`
+/// (the knob spatial_split_budget) extra per primitive; n when the budget is 0.
+inline std::uint64_t spatial_split_max_refs(std::uint64_t n, float budget) {
+  return budget > 0.0f ? n + std::uint64_t(double(n) * double(budget)) : n;
+}
+
 /// The tree of `boxes` (primitive id = index) written into `nodes` in Bvh's layout (the root at
 /// 0, an unused node at 1, sibling pairs after it, depth first) with the primitive references in
 /// leaf order in `prim_ids`; at most `max_refs` references (>= boxes.size()) in all. One thread;

@@ -11,6 +11,7 @@
 #include "accel/binned_sah.h"
 #include "accel/build_tasks.h"
 #include "accel/build_threads.h"
+#include "accel/spatial_split_builder.h"
 
 #include <tbb/parallel_for.h>
 
@@ -226,7 +227,7 @@ void WideBvh<W>::build(std::span<const Aabb> boxes, std::uint64_t budget_bytes, 
   const std::uint64_t n = boxes.size();
   const bool spatial = params_.spatial_split_budget > 0.0f;
   // Spatial splits may reference a primitive from several leaves, up to the budget.
-  const std::uint64_t refs = spatial ? n + std::uint64_t(double(n) * double(params_.spatial_split_budget)) : n;
+  const std::uint64_t refs = spatial_split_max_refs(n, params_.spatial_split_budget);
   // Every inner node has at least two children, so there are fewer inner nodes than
   // references; the builder also holds one reference per primitive while it runs (the spatial
   // one its binary tree too, 2r nodes, and a box and an id per reference, the node's and its

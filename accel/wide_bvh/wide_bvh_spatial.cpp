@@ -8,7 +8,6 @@
 #include "wide_bvh.h"
 #include "wide_node_fill.h"
 
-#include "accel/accel.h"
 #include "accel/build_tasks.h"
 #include "accel/bvh.h"
 #include "accel/spatial_split_builder.h"
