@@ -93,13 +93,25 @@ inline float reduce_max(const Batch& b) {
 /// AVX-512. One instruction where the select takes a compare and a blend.
 template <class Batch>
 [[gnu::always_inline]] inline Batch max_or_second(const Batch& a, const Batch& b) {
-  return xsimd::max(a, b);
+#if XSIMD_WITH_AVX512F
+  // GCC 12's _mm512_max_ps (xsimd's) passes an undefined register as the masked-off lanes and
+  // -Wuninitialized reports it (GCC PR 105593); zero-masking with every lane on is the same VMAXPS.
+  if constexpr (Batch::size == 16 && std::is_base_of_v<xsimd::avx512f, typename Batch::arch_type>)
+    return _mm512_maskz_max_ps(__mmask16(0xFFFF), a, b);
+  else
+#endif
+    return xsimd::max(a, b);
 }
 
 /// `a < b ? a : b` lane by lane (x86's MINPS; see max_or_second).
 template <class Batch>
 [[gnu::always_inline]] inline Batch min_or_second(const Batch& a, const Batch& b) {
-  return xsimd::min(a, b);
+#if XSIMD_WITH_AVX512F
+  if constexpr (Batch::size == 16 && std::is_base_of_v<xsimd::avx512f, typename Batch::arch_type>)
+    return _mm512_maskz_min_ps(__mmask16(0xFFFF), a, b);
+  else
+#endif
+    return xsimd::min(a, b);
 }
 
 /// Index of the lowest set bit of a non-zero mask.

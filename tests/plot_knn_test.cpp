@@ -15,8 +15,8 @@ namespace {
 namespace fs = std::filesystem;
 
 int run_plot(const std::string& input, const fs::path& out, const fs::path& log) {
-  const std::string cmd = std::string(ACCELBENCH_PYTHON) + " " ACCELBENCH_SOURCE_DIR "/scripts/plot_knn.py " +
-                          input + " --out " + out.string() + " > " + log.string() + " 2>&1";
+  std::string cmd = ACCELBENCH_PYTHON " " ACCELBENCH_SOURCE_DIR "/scripts/plot_knn.py ";
+  cmd.append(input).append(" --out ").append(out.string()).append(" > ").append(log.string()).append(" 2>&1");
   const int st = std::system(cmd.c_str());
   return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
 }

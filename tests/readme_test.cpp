@@ -19,7 +19,7 @@ std::string read_file(const std::string& path) {
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
-std::string readme() { return read_file(std::string(ACCELBENCH_SOURCE_DIR) + "/README.md"); }
+std::string readme() { return read_file(ACCELBENCH_SOURCE_DIR "/README.md"); }
 
 /// The subcommands `accelbench --help` lists: the indented names under "Subcommands:".
 std::set<std::string> subcommands_of_help() {

@@ -510,7 +510,9 @@ void expect_wide_spatial_splits_hold_every_triangle_and_lower_the_sah_cost() {
     EXPECT_GT(s.prim_refs, boxes.size() + boxes.size() / 20) << label << ": the splits cut few triangles";
     EXPECT_LE(double(s.prim_refs), std::floor(double(boxes.size()) * 1.5)) << label << ": over the budget";
     EXPECT_LE(s.max_depth_reached, depth) << label;
-    if (depth == 64) EXPECT_LT(s.sah_cost, 0.8 * plain.stats().sah_cost) << label;
+    if (depth == 64) {
+      EXPECT_LT(s.sah_cost, 0.8 * plain.stats().sah_cost) << label;
+    }
     expect_every_point_in_a_leaf_holding_it(g, leaf_boxes_by_primitive(bvh, boxes.size()), label);
   }
 }

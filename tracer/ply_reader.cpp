@@ -84,14 +84,19 @@ class BodyReader {
     if (pos_ == start) fail("the file ends early");
     const char* first = bytes_.data() + start;
     const char* last = bytes_.data() + pos_;
+    // Built by appending: GCC 12 misreads `"'" + string` inlined here as an overflow.
+    const auto not_a = [&](const char* what) {
+      std::string why(1, '\'');
+      fail(why.append(input::one_line({first, std::size_t(last - first)}, 40)).append("' is not ").append(what));
+    };
     double v = 0.0;
     if (is_float(t)) {
       const auto [end, ec] = std::from_chars(first, last, v);
-      if (ec != std::errc() || end != last) fail("'" + input::one_line({first, std::size_t(last - first)}, 40) + "' is not a number");
+      if (ec != std::errc() || end != last) not_a("a number");
     } else {
       std::int64_t i = 0;
       const auto [end, ec] = std::from_chars(first, last, i);
-      if (ec != std::errc() || end != last) fail("'" + input::one_line({first, std::size_t(last - first)}, 40) + "' is not an integer");
+      if (ec != std::errc() || end != last) not_a("an integer");
       v = double(i);
     }
     return v;
