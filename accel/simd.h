@@ -32,13 +32,22 @@ using FloatLeaf = std::conditional_t<std::is_void_v<FloatN<8>>, Float4, FloatN<8
 /// the leaf batch (8 or 4).
 using FloatPacket = std::conditional_t<std::is_void_v<FloatN<16>>, FloatLeaf, FloatN<16>>;
 
+/// A batch of 16 floats in one AVX-512 register, which the helpers below handle by intrinsics.
+template <class Batch>
+inline constexpr bool kZmm =
+#if XSIMD_WITH_AVX512F
+    Batch::size == 16 && std::is_base_of_v<xsimd::avx512f, typename Batch::arch_type>;
+#else
+    false;
+#endif
+
 /// Bit i set where lane i of `m` is true: one movemask on SSE and AVX batches, the mask
 /// register itself on AVX-512.
 template <class Batch>
 inline std::uint32_t mask_bits(const typename Batch::batch_bool_type& m) {
   using Arch = typename Batch::arch_type;
 #if XSIMD_WITH_AVX512F
-  if constexpr (Batch::size == 16 && std::is_base_of_v<xsimd::avx512f, Arch>) {
+  if constexpr (kZmm<Batch>) {
     return std::uint32_t(static_cast<__mmask16>(m));
   } else
 #endif
@@ -96,7 +105,7 @@ template <class Batch>
 #if XSIMD_WITH_AVX512F
   // GCC 12's _mm512_max_ps (xsimd's) passes an undefined register as the masked-off lanes and
   // -Wuninitialized reports it (GCC PR 105593); zero-masking with every lane on is the same VMAXPS.
-  if constexpr (Batch::size == 16 && std::is_base_of_v<xsimd::avx512f, typename Batch::arch_type>)
+  if constexpr (kZmm<Batch>)
     return _mm512_maskz_max_ps(__mmask16(0xFFFF), a, b);
   else
 #endif
@@ -107,7 +116,7 @@ template <class Batch>
 template <class Batch>
 [[gnu::always_inline]] inline Batch min_or_second(const Batch& a, const Batch& b) {
 #if XSIMD_WITH_AVX512F
-  if constexpr (Batch::size == 16 && std::is_base_of_v<xsimd::avx512f, typename Batch::arch_type>)
+  if constexpr (kZmm<Batch>)
     return _mm512_maskz_min_ps(__mmask16(0xFFFF), a, b);
   else
 #endif
