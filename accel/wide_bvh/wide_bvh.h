@@ -46,6 +46,7 @@ struct WideBvhWidth<4> {
   static constexpr const char* kSummary =
       "4-wide BVH, binned SAH, SoA nodes tested in one SIMD step, SIMD sphere and triangle leaves";
   static constexpr int kLeafSize = 4;  ///< Default max_leaf_size: one SIMD step of spheres or triangles.
+  static constexpr float kTraversalCost = 3.0f;  ///< Default traversal_cost.
 };
 template <>
 struct WideBvhWidth<8> {
@@ -53,6 +54,10 @@ struct WideBvhWidth<8> {
   static constexpr const char* kSummary =
       "8-wide BVH, binned SAH, SoA nodes tested in one SIMD step, SIMD sphere and triangle leaves";
   static constexpr int kLeafSize = 8;  ///< Default max_leaf_size: one SIMD step of spheres or triangles.
+  /// Default traversal_cost. A leaf tests up to 8 primitives in one SIMD step, so against an
+  /// 8-wide node step a primitive costs less than the binary BVH's 3 says: at 6 the SAH keeps
+  /// fuller leaves and fewer nodes, and every mesh ray set measured faster (docs/meshes.md).
+  static constexpr float kTraversalCost = 6.0f;
 };
 
 /// Knobs of a wide BVH (the same for every width; the table is owned by its width's name).
@@ -66,7 +71,7 @@ struct WideBvhParams {
   /// Deepest level of wide nodes, root = 0; a range there is a leaf whatever it holds.
   int max_depth = 64;
   /// Cost of one wide node step relative to one primitive test (the SAH's C_trav / C_isect).
-  float traversal_cost = 3.0f;
+  float traversal_cost = WideBvhWidth<W>::kTraversalCost;
   /// Threads the build may use (0 = every core). The tree is the same at any count.
   int build_threads = 1;
   /// Extra references per primitive that spatial splits may add (0: none): the binary BVH's
@@ -288,7 +293,10 @@ class WideBvh {
     float t_lo() const { return widen_down(ray.tmin); }
     float t_hi() const { return widen_up(ray.tmax); }
     std::uint32_t enter(const Node& n, float lo, float hi, float* tn) const { return WideBvh::enter(n, r, lo, hi, tn); }
-    void leaf(std::uint32_t first, std::uint32_t count, std::uint32_t /*box*/) {
+    // Out of line on purpose: inlined into closest(), the leaf code's SIMD registers pushed the
+    // walk's own state (the node index, the ray's broadcast terms) onto the stack, and camera
+    // rays on the bunny took about 15% longer (docs/meshes.md).
+    [[gnu::noinline]] void leaf(std::uint32_t first, std::uint32_t count, std::uint32_t /*box*/) {
       bvh.template leaf_loop<Count, false>(ray, r, tri_ray, first, count, leaf_fn, counters, hit);
     }
   };
