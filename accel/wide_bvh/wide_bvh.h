@@ -549,6 +549,10 @@ class WideBvh {
         counters->boxes_tested += W * q.rays();
       }
       const Node& n = nodes_[node];
+      // The children's indices lie on the node's last cache line, which the box test does not
+      // read: ask for it now, so that it arrives while the boxes are tested rather than after.
+      // spheres8000's camera rays took about 7% less time with it (docs/benchmarks.md).
+      __builtin_prefetch(n.child);
       std::uint32_t bits = q.enter(n, t_lo, t_hi, tn);
       if (bits) {
         // Push every entered child but the nearest, farthest first; then take the nearest. A
@@ -621,6 +625,7 @@ class WideBvh {
         counters->boxes_tested += W;
       }
       const Node& n = nodes_[node];
+      __builtin_prefetch(n.child);  // as in closest()
       std::uint32_t bits = enter(n, r, t_lo, t_hi, tn);
       while (bits) {
         const int i = std::countr_zero(bits);
