@@ -551,7 +551,7 @@ class WideBvh {
       const Node& n = nodes_[node];
       // The children's indices lie on the node's last cache line, which the box test does not
       // read: ask for it now, so that it arrives while the boxes are tested rather than after.
-      // spheres8000's camera rays took about 7% less time with it (docs/benchmarks.md).
+      // spheres8000's camera rays took about 7% less time with it (docs/meshes.md).
       __builtin_prefetch(n.child);
       std::uint32_t bits = q.enter(n, t_lo, t_hi, tn);
       if (bits) {
