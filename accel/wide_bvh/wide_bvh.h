@@ -549,9 +549,10 @@ class WideBvh {
         counters->boxes_tested += W * q.rays();
       }
       const Node& n = nodes_[node];
-      // The children's indices lie on the node's last cache line, which the box test does not
-      // read: ask for it now, so that it arrives while the boxes are tested rather than after.
-      // spheres8000's camera rays took about 7% less time with it (docs/meshes.md).
+      // In an 8-wide node the children's indices fill the last cache line, which the box test
+      // does not read: ask for it now, so that it arrives while the boxes are tested rather than
+      // after (spheres8000's camera rays took about 7% less time, docs/meshes.md). In a 4-wide
+      // node the box test reads that line anyway.
       __builtin_prefetch(n.child);
       std::uint32_t bits = q.enter(n, t_lo, t_hi, tn);
       if (bits) {
