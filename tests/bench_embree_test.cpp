@@ -180,6 +180,9 @@ TEST(BenchEmbree, ThreadsOnlyRunsNoBenchTraceAndPrintsTheTwoThreadRow) {
   EXPECT_NE(line_with(r.output, "| two threads over one").find("| 1.923 (median of pairs 1.92-1.92) |"),
             std::string::npos)
       << r.output;
+  // It measures no triangles, so it prints no triangle table and does not blame missing meshes.
+  EXPECT_EQ(line_with(r.output, "| workload (triangles)"), "") << r.output;
+  EXPECT_EQ(r.output.find("no triangle workload"), std::string::npos) << r.output;
 }
 
 // On a host with slow spells the fastest repetition is the steadier time (a spell only adds
