@@ -8,6 +8,8 @@
 #include "geometry.h"
 #include "simd.h"
 
+#include <glm/gtc/type_ptr.hpp>
+
 #include <cmath>
 #include <cstdint>
 
@@ -28,15 +30,23 @@ struct WatertightRay {
 
   WatertightRay() = default;
   explicit WatertightRay(const Ray& ray) {
-    const Vec3 ad = glm::abs(ray.dir);
-    kz = ad.x > ad.y ? (ad.x > ad.z ? 0 : 2) : (ad.y > ad.z ? 1 : 2);
-    kx = kz == 2 ? 0 : kz + 1;
-    ky = kx == 2 ? 0 : kx + 1;
-    const float dz = ray.dir[kz];
+    // tracer::watertight_distance's choice of axes, without a branch: an incoherent ray's
+    // largest component is a coin toss, and written as nested conditionals, or read through
+    // glm's operator[] (a switch), it became branches the predictor missed (docs/meshes.md).
+    // The same three comparisons give the same axes for every input, NaN included.
+    const float* d = glm::value_ptr(ray.dir);
+    const float ax = std::abs(d[0]), ay = std::abs(d[1]), az = std::abs(d[2]);
+    const int x_over_y = ax > ay, x_over_z = ax > az, y_over_z = ay > az;
+    kz = 2 - 2 * (x_over_y & x_over_z) - ((x_over_y ^ 1) & y_over_z);
+    // The next axes cyclically, kz + 1 and kz + 2 mod 3, read from two-bit tables (0b001001:
+    // 1, 2, 0; 0b010010: 2, 0, 1): written as comparisons, the compiler branched on them again.
+    kx = (0b001001 >> (2 * kz)) & 3;
+    ky = (0b010010 >> (2 * kz)) & 3;
+    const float dz = d[kz];
     valid = dz != 0.0f && std::isfinite(dz);
     if (!valid) return;
-    sx = -ray.dir[kx] / dz;
-    sy = -ray.dir[ky] / dz;
+    sx = -d[kx] / dz;
+    sy = -d[ky] / dz;
     sz = 1.0f / dz;
   }
 };
@@ -49,7 +59,8 @@ template <class Batch>
                                                               const WatertightRay& w, std::uint32_t live = ~0u) {
   const Batch inf(kInfinity);
   if (!w.valid) return inf;
-  const Batch ox(ray.org[w.kx]), oy(ray.org[w.ky]), oz(ray.org[w.kz]);
+  const float* org = glm::value_ptr(ray.org);  // indexed, not through glm's operator[] (a switch)
+  const Batch ox(org[w.kx]), oy(org[w.ky]), oz(org[w.kz]);
   // The vertices relative to the origin, on the permuted axes.
   const Batch a_x = tri.p[0][0] - ox, a_y = tri.p[0][1] - oy, a_z = tri.p[0][2] - oz;
   const Batch b_x = tri.p[1][0] - ox, b_y = tri.p[1][1] - oy, b_z = tri.p[1][2] - oz;

@@ -20,6 +20,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <map>
 #include <random>
 #include <string>
@@ -168,6 +169,55 @@ TEST(Triangle, SimdLanesEqualTheScalarRoutinesBitForBit) {
   // Enough hits that the comparison is not of misses only.
   EXPECT_GT(hits[0], lanes / 40);
   EXPECT_GT(hits[1], lanes / 40);
+}
+
+// WatertightRay picks its axes without branches; the scalar routine with nested conditionals.
+// Every direction made of ties, signed zeros, infinities and NaN gets the scalar routine's axes,
+// and shear, and the lanes give the scalar routine's t bit for bit.
+TEST(Triangle, TheRaysAxesAreTheScalarRoutinesOnTiesZerosAndNaN) {
+  using Batch = accel::simd::FloatLeaf;
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const float values[] = {0.0f, -0.0f, 1.0f, -1.0f, 2.0f, -2.0f, 1e-30f, kInf, -kInf, nan};
+  const Vec3 p0(-1.0f, -1.5f, 3.0f), p1(2.0f, -1.0f, 2.5f), p2(0.5f, 2.0f, -3.0f);
+  alignas(64) float rows[3][3][Batch::size];
+  for (int v = 0; v < 3; ++v)
+    for (int a = 0; a < 3; ++a)
+      for (std::size_t i = 0; i < Batch::size; ++i) rows[v][a][i] = (v == 0 ? p0 : v == 1 ? p1 : p2)[a];
+  accel::TriangleLanes<Batch> tri;
+  for (int v = 0; v < 3; ++v)
+    for (int a = 0; a < 3; ++a) tri.p[v][a] = Batch::load_aligned(rows[v][a]);
+  int rays = 0, hits = 0;
+  for (const float x : values)
+    for (const float y : values)
+      for (const float z : values) {
+        Ray r;
+        r.org = Vec3(0.25f, -0.5f, 0.125f);
+        r.dir = Vec3(x, y, z);
+        const accel::WatertightRay w(r);
+        const float ad[3] = {std::abs(x), std::abs(y), std::abs(z)};
+        const int kz = ad[0] > ad[1] ? (ad[0] > ad[2] ? 0 : 2) : (ad[1] > ad[2] ? 1 : 2);
+        const int kx = kz == 2 ? 0 : kz + 1;
+        const int ky = kx == 2 ? 0 : kx + 1;
+        SCOPED_TRACE("direction (" + std::to_string(x) + ", " + std::to_string(y) + ", " + std::to_string(z) + ")");
+        ASSERT_EQ(w.kz, kz);
+        ASSERT_EQ(w.kx, kx);
+        ASSERT_EQ(w.ky, ky);
+        const float dz = r.dir[kz];
+        ASSERT_EQ(w.valid, dz != 0.0f && std::isfinite(dz));
+        if (w.valid) {
+          ASSERT_EQ(std::bit_cast<std::uint32_t>(w.sx), std::bit_cast<std::uint32_t>(-r.dir[kx] / dz));
+          ASSERT_EQ(std::bit_cast<std::uint32_t>(w.sy), std::bit_cast<std::uint32_t>(-r.dir[ky] / dz));
+          ASSERT_EQ(std::bit_cast<std::uint32_t>(w.sz), std::bit_cast<std::uint32_t>(1.0f / dz));
+        }
+        alignas(64) float got[Batch::size];
+        accel::watertight_lanes(tri, r, w).store_aligned(got);
+        const float want = tracer::watertight_distance<float>(p0, p1, p2, r);
+        ASSERT_EQ(std::bit_cast<std::uint32_t>(got[0]), std::bit_cast<std::uint32_t>(want));
+        ++rays;
+        hits += want < kInf;
+      }
+  EXPECT_EQ(rays, 1000);
+  EXPECT_GT(hits, 0);  // some of these directions hit the triangle, so t itself is compared
 }
 
 /// A leaf function for TriangleSoA::test that keeps the nearest accepted hit and runs `test`.
