@@ -172,7 +172,7 @@ TEST(Triangle, SimdLanesEqualTheScalarRoutinesBitForBit) {
 }
 
 // WatertightRay picks its axes without branches; the scalar routine with nested conditionals.
-// Every direction made of ties, signed zeros, infinities and NaN gets the scalar routine's axes,
+// Every direction made of ties, signed zeros, infinities and NaN gets the scalar routine's axes
 // and shear, and the lanes give the scalar routine's t bit for bit.
 TEST(Triangle, TheRaysAxesAreTheScalarRoutinesOnTiesZerosAndNaN) {
   using Batch = accel::simd::FloatLeaf;
