@@ -1,5 +1,7 @@
 #include "isa.h"
 
+#include <cpuid.h>
+
 namespace accel {
 
 const char* isa_name(Isa isa) {
@@ -41,14 +43,29 @@ int isa_lanes(Isa isa) {
   return 4;
 }
 
+namespace {
+
+/// Bit `bit` of register ECX of CPUID leaf `leaf`; false when the CPU has no such leaf. F16C and
+/// LZCNT are read here rather than through __builtin_cpu_supports, whose names for them clang 14
+/// rejects: with them no clang build compiled this file (scripts/fuzz builds with clang).
+bool cpuid_ecx_bit(unsigned leaf, unsigned bit) {
+  unsigned eax = 0, ebx = 0, ecx = 0, edx = 0;
+  if (!__get_cpuid(leaf, &eax, &ebx, &ecx, &edx)) return false;
+  return (ecx >> bit) & 1u;
+}
+
+bool cpu_has_f16c() { return cpuid_ecx_bit(1, 29); }            // CPUID.1:ECX.F16C[bit 29]
+bool cpu_has_lzcnt() { return cpuid_ecx_bit(0x80000001u, 5); }  // CPUID.80000001H:ECX.LZCNT[bit 5]
+
+}  // namespace
+
 IsaSet cpu_isas() {
   __builtin_cpu_init();
   IsaSet set = isa_bit(Isa::Sse2);  // every x86-64 CPU
   const bool sse42 = __builtin_cpu_supports("sse4.2") && __builtin_cpu_supports("popcnt");
-  const bool avx = sse42 && __builtin_cpu_supports("avx") && __builtin_cpu_supports("f16c");
+  const bool avx = sse42 && __builtin_cpu_supports("avx") && cpu_has_f16c();
   const bool avx2 = avx && __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") &&
-                    __builtin_cpu_supports("bmi") && __builtin_cpu_supports("bmi2") &&
-                    __builtin_cpu_supports("lzcnt");
+                    __builtin_cpu_supports("bmi") && __builtin_cpu_supports("bmi2") && cpu_has_lzcnt();
   const bool avx512 = avx2 && __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512cd") &&
                       __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx512bw") &&
                       __builtin_cpu_supports("avx512vl");
