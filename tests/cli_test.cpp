@@ -130,6 +130,22 @@ TEST_F(Cli, RandomGeneratorTakesAnyCountIncludingZero) {
   EXPECT_NE(some.output.find("123 spheres"), std::string::npos) << some.output;
 }
 
+// A model converted to a bare file name in the working folder (no folder part, as a user types
+// it): the scene is written, refers to the model beside it, and renders. std::filesystem::absolute
+// refuses the empty folder of a bare name, which once failed this with a filesystem error.
+TEST_F(Cli, ConvertToABareNameInTheWorkingFolder) {
+  std::ofstream(path("tri.obj")) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+  const std::string in_dir = "cd " + dir_.string() + " && ";
+  const CliRun convert = cli_run::run(in_dir + ACCELBENCH_CLI + " convert tri.obj -o tri.json");
+  ASSERT_EQ(convert.status, 0) << convert.output;
+  std::ifstream saved(path("tri.json"));
+  const nlohmann::json doc = nlohmann::json::parse(saved);
+  EXPECT_EQ(doc["meshes"][0]["file"], "tri.obj");
+  const CliRun render = cli_run::run(in_dir + ACCELBENCH_CLI + " render tri.json --resolution 8x8 -o tri.png");
+  EXPECT_EQ(render.status, 0) << render.output;
+  EXPECT_TRUE(fs::exists(path("tri.png")));
+}
+
 // The photon integrator from the command line: the scene's knobs, --param on top, one-line errors
 // naming the knob for bad values, and --stats recording the maps.
 TEST_F(Cli, PhotonKnobsFromSceneAndFlagsAndBadOnesNameTheKnob) {

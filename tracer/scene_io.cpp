@@ -56,7 +56,9 @@ void save_scene_file(const Scene& scene, const std::string& path) {
   nlohmann::json doc = scene_to_json(scene);
   // Mesh files are referred to relative to the saved scene's folder, so the two move together.
   if (doc.contains("meshes")) {
-    const std::filesystem::path folder = std::filesystem::absolute(folder_of(path));
+    // A bare file name's folder is "", which std::filesystem::absolute refuses: that is ".".
+    const std::string dir = folder_of(path);
+    const std::filesystem::path folder = std::filesystem::absolute(dir.empty() ? "." : dir);
     for (nlohmann::json& m : doc["meshes"]) {
       const std::filesystem::path file = std::filesystem::absolute(m["file"].get<std::string>());
       m["file"] = file.lexically_relative(folder).string();
