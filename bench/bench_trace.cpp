@@ -175,7 +175,10 @@ std::vector<Ray> spawned_rays(const tracer::Geometry& g, const std::vector<Ray>&
     if (k++ % 2 == 0) {
       d = r.dir - 2.0f * glm::dot(r.dir, n) * n;
     } else {
-      d = glm::normalize(Vec3(gauss(rng), gauss(rng), gauss(rng)));
+      // z, y, x, sequenced: as gcc evaluated Vec3(gauss(rng), gauss(rng), gauss(rng)), whose
+      // argument order C++ leaves unspecified (clang drew other rays from it).
+      const float gz = gauss(rng), gy = gauss(rng), gx = gauss(rng);
+      d = glm::normalize(Vec3(gx, gy, gz));
       if (glm::dot(d, n) < 0.0f) d = -d;
     }
     out.push_back(tracer::spawn_ray(sp, d));

@@ -26,8 +26,11 @@ tracer::Scene make_spheres8000(const GenOptions& options) {
         const float room = 0.5f * kCell - s.radius;  // jitter that keeps the sphere in its cell
         const tracer::Vec3 cell_centre =
             -0.5f * kCube + kCell * (tracer::Vec3(float(x), float(y), float(z)) + 0.5f);
-        s.center = cell_centre + tracer::Vec3(rng.uniform(-room, room), rng.uniform(-room, room),
-                                              rng.uniform(-room, room));
+        // Drawn z, y, x: the order gcc evaluated the three calls in when they were a constructor's
+        // arguments (an order C++ leaves unspecified; clang took x first and drew another scene).
+        // Named and sequenced, every compiler draws the scene every published figure used.
+        const float dz = rng.uniform(-room, room), dy = rng.uniform(-room, room), dx = rng.uniform(-room, room);
+        s.center = cell_centre + tracer::Vec3(dx, dy, dz);
         const float pick = rng.uniform();  // 80% diffuse, 10% mirror, 10% glass
         s.material = pick < 0.8f ? rng.below(6) : (pick < 0.9f ? 6u : 7u);
         scene.geometry.spheres.push_back(s);
