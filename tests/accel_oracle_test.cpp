@@ -386,11 +386,15 @@ constexpr double kAdversarialTolerance = 0.01;
 /// How far a structure whose own primitive routine answers (StructureInfo::exact false) is from
 /// the reference: the fraction of rays with another closest primitive (single rays or packets;
 /// not counting naive's point on a neighbouring primitive, see `neighbours`),
-/// the largest relative difference of t where the primitive agrees, and the fraction of rays with
-/// another any-hit answer.
+/// the largest difference of the hit point where the primitive agrees (relative to the size of its
+/// coordinates), and the fraction of rays with another any-hit answer.
 struct Agreement {
   double other_prim = 0.0;
-  double max_rel_t = 0.0;
+  /// |t - t_naive| |dir| / max(|org|, t_naive |dir|): the hit points' distance in units of their
+  /// coordinates' size, as bench_trace measures it. Relative to t alone it is ill-posed: a ray
+  /// leaving a surface 6e-5 from its origin, at a float origin of size 1.7, carries an ulp of
+  /// that origin in t (Embree's spheres: 1.2e-3 of t, 4e-8 of the coordinates).
+  double max_point = 0.0;
   double t_off = 0.0;  ///< Fraction of rays whose t differs by more than 1e-5 relative.
   double other_occluded = 0.0;
   /// Rays whose hit is naive's point on a neighbouring primitive (t within 1e-5): rays aimed at
@@ -420,7 +424,10 @@ Agreement agreement(const tracer::Geometry& geometry, const accel::AnyAccel& a, 
         ++prim;
       } else if (h.found()) {
         const double rel = double(std::abs(h.t - ref.closest[i].t)) / double(ref.closest[i].t);
-        g.max_rel_t = std::max(g.max_rel_t, rel);
+        const Ray& r = ref.rays[i];
+        const double len = double(glm::length(r.dir));
+        g.max_point = std::max(g.max_point, double(std::abs(h.t - want.t)) * len /
+                                                std::max(double(glm::length(r.org)), double(want.t) * len));
         t_off += rel > 1e-5;
       }
     }
@@ -486,13 +493,14 @@ TEST_P(Oracle, EveryStructureAndKnobMatchesNaive) {
       if (!accel::find_structure(name)->exact) {
         // Its own primitive routine answers: the same primitive and any-hit answer, and t within
         // 1e-5, for all but a few of these adversarial rays (grazing rays, whose t is
-        // ill-conditioned, and rays on box faces); t within 1e-3 for every ray.
+        // ill-conditioned, and rays on box faces); every hit point within 1e-5 of its coordinates' size
+        // (bench_trace's bar; at most 5.8e-7 here: 7 December 2026, gcc 12 and clang 14 builds).
         const Agreement g = agreement(scene.geometry, a, ref);
         EXPECT_LE(g.other_prim, kAdversarialTolerance) << label << " (and " << g.neighbours
                                                         << " rays on naive's point of a neighbouring primitive)";
         EXPECT_LE(g.other_occluded, kAdversarialTolerance) << label;
         EXPECT_LE(g.t_off, kAdversarialTolerance) << label;
-        EXPECT_LE(g.max_rel_t, 1e-3) << label;
+        EXPECT_LE(g.max_point, 1e-5) << label;
         continue;
       }
       for (const Reference& r : refs)
