@@ -410,9 +410,9 @@ Validation hit_mismatch(const tracer::Geometry& g, const std::vector<Ray>& rays,
                  dt <= kToleranceT * double(want[i].t)))
         ++other;
     } else if (want[i].found() && want[i].t > 0.0f) {
-      const double len = double(glm::length(rays[i].dir));
       other += dt > kToleranceT * double(want[i].t);
       if (exact) continue;
+      const double len = double(glm::length(rays[i].dir));
       const Vec3 n = tracer::surface_point(g, rays[i], want[i], tracer::TriangleTest::Watertight).n_geo;
       const double cos = std::abs(double(glm::dot(rays[i].dir, n))) / (len * double(glm::length(n)));
       const double off = dt * len * cos / std::max(double(glm::length(rays[i].org)), double(want[i].t) * len);

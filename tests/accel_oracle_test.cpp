@@ -9,6 +9,7 @@
 #include "tracer/intersector.h"
 #include "tracer/triangle_box.h"
 #include "scenes_gen/closed_meshes.h"
+#include "peer_point.h"
 
 #include <gtest/gtest.h>
 
@@ -423,12 +424,8 @@ Agreement agreement(const tracer::Geometry& geometry, const accel::AnyAccel& a, 
       } else if (h.prim != want.prim) {
         ++prim;
       } else if (h.found()) {
-        const double rel = double(std::abs(h.t - ref.closest[i].t)) / double(ref.closest[i].t);
-        const Ray& r = ref.rays[i];
-        const double len = double(glm::length(r.dir));
-        g.max_point = std::max(g.max_point, double(std::abs(h.t - want.t)) * len /
-                                                std::max(double(glm::length(r.org)), double(want.t) * len));
-        t_off += rel > 1e-5;
+        g.max_point = std::max(g.max_point, peer_point::offset(ref.rays[i], h.t, want.t));
+        t_off += double(std::abs(h.t - want.t)) / double(want.t) > 1e-5;
       }
     }
     occ += (occluded[i] != ref.occluded[i]) + (occluded_packets[i] != ref.occluded[i]);

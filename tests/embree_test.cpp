@@ -12,6 +12,7 @@
 #include "tracer/render.h"
 #include "tracer/sphere.h"
 #include "tracer/surface.h"
+#include "peer_point.h"
 
 #include <gtest/gtest.h>
 
@@ -297,9 +298,8 @@ void expect_peer_agrees_at_every_isa(const std::string& peer, const nlohmann::js
         } else if (want[i].found()) {
           const double dt = std::abs(double((*got)[i].t) - double(want[i].t));
           const double rel = dt / double(want[i].t);
-          const double len = double(glm::length(rays[i].dir));
           max_rel = std::max(max_rel, rel);
-          max_point = std::max(max_point, dt * len / std::max(double(glm::length(rays[i].org)), double(want[i].t) * len));
+          max_point = std::max(max_point, peer_point::offset(rays[i], (*got)[i].t, want[i].t));
           t_off += rel > 1e-5;
         }
       }
