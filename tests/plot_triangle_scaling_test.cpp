@@ -76,4 +76,28 @@ TEST(PlotTriangleScaling, AFileWithoutScalingBenchmarksGivesOneLine) {
   fs::remove_all(dir);
 }
 
+// scripts/triangle_scaling with ACCELBENCH_BUILD_DIR an absolute path (as a helper's own build
+// folder is): it once looked for bench_trace under the repository even so. A scene already
+// measured in --dir is not measured again, so the script goes straight to the figure, and exits 1
+// because the file holds a benchmark that failed its check.
+TEST(TriangleScalingScript, TakesAnAbsoluteBuildDirectory) {
+#ifndef ACCELBENCH_BENCH_TRACE_DIR
+  GTEST_SKIP() << "bench_trace is not built (ACCELBENCH_BENCHMARKS=OFF)";
+#else
+  const fs::path dir = fs::temp_directory_path() / ("accelbench_scaling_script_" + std::to_string(getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  fs::copy_file(ACCELBENCH_SOURCE_DIR "/tests/data/small_scaling.json", dir / "tess_L0.json");
+  const fs::path build = fs::absolute(fs::path(ACCELBENCH_BENCH_TRACE_DIR) / "..");
+  const cli_run::CliRun r = cli_run::run("cd " + dir.string() + " && ACCELBENCH_BUILD_DIR=" + build.string() +
+                                         " " ACCELBENCH_SOURCE_DIR "/scripts/triangle_scaling --dir " +
+                                         dir.string() + " --scenes tess_L0 --out " + (dir / "fig").string());
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_EQ(r.output.find("not found"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("tess_L0 already measured"), std::string::npos) << r.output;
+  EXPECT_TRUE(fs::exists(dir / "fig.png")) << r.output;
+  fs::remove_all(dir);
+#endif
+}
+
 }  // namespace
