@@ -235,9 +235,12 @@ def plot_paper_speedup(rows, out_dir):
                             elinewidth=1.5)
         handles["speedup over naive, measured here (right axis; whiskers: 95% interval, paired rounds)"] = dots
         for xi, sp, n in zip(x, speed, names):
-            mark = " noisy" if best[n].get("noisy") else ""
+            # "noisy" on a line of its own (side by side, neighbours' labels overlapped), on a pale
+            # box so that a red label stays legible over the red bar.
+            mark = "\nnoisy" if best[n].get("noisy") else ""
             ax2.annotate(f"{sp:.3g}x{mark}", (xi, sp), textcoords="offset points", xytext=(0, 8), ha="center",
-                         fontsize=8, fontweight="bold", color="red" if mark else "black")
+                         fontsize=8, fontweight="bold", color="red" if mark else "black",
+                         bbox=dict(boxstyle="round,pad=0.15", fc="white", ec="none", alpha=0.8))
         plot_work_per_ray(work_ax, best, names, x)
         # The paper's speedups (spheres8000) at the structures they were measured for, the value
         # written once per structure.
