@@ -38,10 +38,9 @@ concept TriangleLeafFn = AcceptingLeafFn<LeafFn> && requires(const LeafFn& f) {
 /// Hands the hits among the first `lanes` lanes of `t` (one lane per entry of ids[at, at +
 /// lanes)) to leaf_fn.accept in id order: those within ray.tmax, never a miss (+inf), even while
 /// tmax is +inf. Returns true when AnyHit and one was accepted; sets `hit` when one was accepted.
-/// `ids` is the id array, or anything that reads an id by index (TriangleSoA's id row).
-template <bool AnyHit, class Batch, class Ids, class LeafFn>
-[[gnu::always_inline]] inline bool accept_lanes(const Batch& t, std::uint32_t lanes, const Ids& ids, std::uint32_t at,
-                                                Ray& ray, LeafFn& leaf_fn, bool& hit) {
+template <bool AnyHit, class Batch, class LeafFn>
+[[gnu::always_inline]] inline bool accept_lanes(const Batch& t, std::uint32_t lanes, const std::uint32_t* ids,
+                                                std::uint32_t at, Ray& ray, LeafFn& leaf_fn, bool& hit) {
   const float limit = std::min(ray.tmax, std::numeric_limits<float>::max());
   std::uint32_t bits = simd::mask_bits<Batch>(t <= Batch(limit)) & ((1u << lanes) - 1u);
   if (!bits) return false;

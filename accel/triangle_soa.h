@@ -2,13 +2,10 @@
 // Triangles stored beside a structure's primitive id array, leaf by leaf, so that a leaf's
 // triangles are tested several at a time (triangle_hit.h, one SIMD lane per triangle) by the
 // routine the leaf function runs, watertight or Moller-Trumbore, instead of one leaf-function
-// call each. A leaf over ids[first, first + count) owns floats [10 first, 10 (first + count)):
-// ten rows of `count` floats, one row per vertex coordinate (vertex v, axis a: row 3 v + a),
-// then a row of the triangles' ids, bit for bit. A leaf is one contiguous piece of memory (40
-// bytes a triangle, five or six cache lines for a leaf of eight), where one array per
-// coordinate would touch nine places; a hit reads its id from the lines the test loaded, not
-// from the structure's id array (on grid1M's incoherent rays that load missed the cache and
-// held 16% of the leaf test's samples).
+// call each. A leaf over ids[first, first + count) owns floats [9 first, 9 (first + count)):
+// nine rows of `count` floats, one row per vertex coordinate (vertex v, axis a: row 3 v + a).
+// A leaf's triangles are one contiguous piece of memory (36 bytes a triangle, three to five
+// cache lines for a leaf of eight), where one array per coordinate would touch nine places.
 
 #include "cache_line_allocator.h"
 #include "geometry.h"
@@ -20,7 +17,6 @@
 
 #include <algorithm>
 #include <cstdint>
-#include <cstring>
 #include <span>
 #include <vector>
 
@@ -50,20 +46,18 @@ class TriangleSoA {
 
   /// Tests the leaf ids[begin, begin + count) (one of the leaves it was built with) as triangles
   /// by leaf_fn.triangle_test(), kLanes at a time, then calls leaf_fn.accept(id, t, ray) in id
-  /// order for each hit within ray.tmax, with the id from the leaf's own id row. `w` is
-  /// WatertightRay(ray), computed once per ray by the caller. Returns true when AnyHit and one
-  /// was accepted; sets `hit` when one was accepted.
+  /// order for each hit within ray.tmax. `w` is WatertightRay(ray), computed once per ray by the
+  /// caller. Returns true when AnyHit and one was accepted; sets `hit` when one was accepted.
   template <bool Count, bool AnyHit, class LeafFn>
-  bool test(std::uint32_t begin, std::uint32_t count, Ray& ray, const WatertightRay& w, LeafFn& leaf_fn,
-            TraversalCounters* counters, bool& hit) const {
+  bool test(const std::uint32_t* ids, std::uint32_t begin, std::uint32_t count, Ray& ray, const WatertightRay& w,
+            LeafFn& leaf_fn, TraversalCounters* counters, bool& hit) const {
     if constexpr (Count) counters->prims_tested += count;
-    const float* leaf = data_.data() + kRows * std::size_t(begin);
-    const IdRow ids{leaf + kIdRow * std::size_t(count)};
+    const float* leaf = data_.data() + 9 * std::size_t(begin);
     if (leaf_fn.triangle_test() == TriangleTest::Moller) {
       constexpr int kWorld[3] = {0, 1, 2};
       for (std::uint32_t j = 0; j < count; j += kLanes) {
         const Batch t = moller_lanes(load(leaf, count, j, kWorld), ray);
-        if (accept_lanes<AnyHit>(t, std::min(kLanes, count - j), ids, j, ray, leaf_fn, hit)) return true;
+        if (accept_lanes<AnyHit>(t, std::min(kLanes, count - j), ids, begin + j, ray, leaf_fn, hit)) return true;
       }
       return false;
     }
@@ -72,26 +66,12 @@ class TriangleSoA {
     for (std::uint32_t j = 0; j < count; j += kLanes) {
       const std::uint32_t lanes = std::min(kLanes, count - j);
       const Batch t = watertight_lanes_permuted(load(leaf, count, j, axes), ray, w, (1u << lanes) - 1u);
-      if (accept_lanes<AnyHit>(t, lanes, ids, j, ray, leaf_fn, hit)) return true;
+      if (accept_lanes<AnyHit>(t, lanes, ids, begin + j, ray, leaf_fn, hit)) return true;
     }
     return false;
   }
 
  private:
-  /// Rows per leaf: nine vertex coordinates, then the ids.
-  static constexpr std::size_t kIdRow = 9;
-  static constexpr std::size_t kRows = 10;
-
-  /// A leaf's id row: the id of its triangle i, stored bit for bit in a float's slot.
-  struct IdRow {
-    const float* row;
-    std::uint32_t operator[](std::uint32_t i) const {
-      std::uint32_t id;
-      std::memcpy(&id, row + i, sizeof id);
-      return id;
-    }
-  };
-
   /// Lanes j.. of a leaf's rows, axis a of the result taken from row axes[a]. Lanes past the
   /// leaf's count read the next row (or the padding after the last leaf) and are ignored.
   [[gnu::always_inline]] static TriangleLanes<Batch> load(const float* leaf, std::uint32_t count, std::uint32_t j,

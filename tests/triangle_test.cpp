@@ -270,7 +270,7 @@ TEST(Triangle, LeafRowsGiveEveryLeafItsOwnTrianglesAtAnyCount) {
         NearestLeaf got{test};
         Ray ray = r;
         bool hit = false;
-        soa.test<false, false>(leaf.first, leaf.count, ray, accel::WatertightRay(ray), got, nullptr, hit);
+        soa.test<false, false>(ids.data(), leaf.first, leaf.count, ray, accel::WatertightRay(ray), got, nullptr, hit);
         ASSERT_EQ(got.id, want_id) << "leaf of " << leaf.count << ", triangle " << j - leaf.first;
         ASSERT_EQ(std::bit_cast<std::uint32_t>(ray.tmax), std::bit_cast<std::uint32_t>(want.tmax));
         hits += want_id != tracer::Hit::kNone;

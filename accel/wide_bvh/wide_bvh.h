@@ -482,8 +482,8 @@ class WideBvh {
             const std::size_t i = std::size_t(std::countr_zero(lanes));
             LaneLeaf<LeafFn> lane{&leaf_fn, base + i};
             bool hit = false;
-            bvh.triangles_.template test<Count, false>(first, count, rays[i], WatertightRay(rays[i]), lane, counters,
-                                                       hit);
+            bvh.triangles_.template test<Count, false>(bvh.prim_ids_.data(), first, count, rays[i],
+                                                       WatertightRay(rays[i]), lane, counters, hit);
           }
           return;
         }
@@ -705,8 +705,8 @@ class WideBvh {
                 const std::size_t i = std::size_t(std::countr_zero(lanes));
                 LaneLeaf<LeafFn> lane{&leaf_fn, lane_base + i};
                 bool hit = false;
-                if (triangles_.template test<Count, true>(n.child[c], n.count[c], group[i], WatertightRay(group[i]),
-                                                          lane, counters, hit))
+                if (triangles_.template test<Count, true>(prim_ids_.data(), n.child[c], n.count[c], group[i],
+                                                          WatertightRay(group[i]), lane, counters, hit))
                   live &= ~(1u << i);
               }
               if (!live) return packet.valid;
@@ -755,7 +755,8 @@ class WideBvh {
                  LeafFn& leaf_fn, TraversalCounters* counters, bool& hit) const {
     if constexpr (TriangleLeafFn<LeafFn>) {
       if (!triangles_.empty())
-        return triangles_.template test<Count, AnyHit>(first, count, ray, tri_ray, leaf_fn, counters, hit);
+        return triangles_.template test<Count, AnyHit>(prim_ids_.data(), first, count, ray, tri_ray, leaf_fn,
+                                                       counters, hit);
     }
     const bool sphere_leaves = AcceptingLeafFn<LeafFn> && !spheres_.empty();
     if (sphere_leaves || leaf_boxes_.empty())
