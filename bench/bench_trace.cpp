@@ -16,8 +16,8 @@
 // relative off for at most 0.1% of rays, every hit point within 1e-5 of its coordinates of naive's
 // surface, along its normal; its hits within the rounding of a ray's own origin are counted apart,
 // as peer_self_hits). A mismatch skips that benchmark with an error and makes the binary exit
-// non-zero. A whole render is validated by
-// rendering a window of the image through naive and through the structure: every pixel bit-equal.
+// non-zero. A whole render is validated by rendering a window of the image through naive and
+// through the structure: every pixel bit-equal.
 // Naive's reference pass (8000 spheres x 786k rays, about 7 s) is computed once per process and
 // shared; naive itself is timed on every 64th ray of spheres8000, which is what its rate and the
 // speedup counters are based on (the counter names say so). On the meshes naive would take hours:
