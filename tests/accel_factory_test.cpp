@@ -20,7 +20,7 @@ std::vector<Aabb> row_of_boxes(int n) {
   return boxes;
 }
 
-std::string error_of(std::string_view name, const json& params, int prims = 10) {
+std::string factory_error(std::string_view name, const json& params, int prims = 10) {
   const auto boxes = row_of_boxes(prims);
   try {
     accel::make_accel(name, params, boxes);
@@ -41,31 +41,31 @@ TEST(AccelFactory, NamesListEveryStructure) {
 TEST(AccelFactory, UnknownNameListsValidOnes) {
   std::string valid;
   for (const std::string& n : accel::accel_names()) valid += (valid.empty() ? "" : ", ") + n;
-  EXPECT_EQ(error_of("kdtre", nullptr), "unknown structure 'kdtre' (valid: " + valid + ")");
+  EXPECT_EQ(factory_error("kdtre", nullptr), "unknown structure 'kdtre' (valid: " + valid + ")");
 }
 
 TEST(AccelFactory, NaiveRejectsAnyKnob) {
-  EXPECT_EQ(error_of("naive", {{"max_depth", 3}}), "naive: unknown knob 'max_depth' (it has no knobs)");
+  EXPECT_EQ(factory_error("naive", {{"max_depth", 3}}), "naive: unknown knob 'max_depth' (it has no knobs)");
 }
 
 TEST(AccelFactory, BadKnobsNameTheKey) {
-  EXPECT_EQ(error_of("bvh", {{"max_dept", 3}}),
+  EXPECT_EQ(factory_error("bvh", {{"max_dept", 3}}),
             "bvh: unknown knob 'max_dept' (its knobs: bins, max_leaf_size, max_depth, traversal_cost, build_threads, "
             "spatial_split_budget)");
-  EXPECT_EQ(error_of("bvh", {{"max_depth", "3"}}), "bvh: knob 'max_depth' must be an integer, got \"3\"");
-  EXPECT_EQ(error_of("bvh", {{"max_depth", 65}}), "bvh: knob 'max_depth' must be in [0, 64], got 65");
-  EXPECT_EQ(error_of("bvh", {{"max_depth", -1}}), "bvh: knob 'max_depth' must be in [0, 64], got -1");
-  EXPECT_EQ(error_of("bvh", {{"max_leaf_size", 0}}), "bvh: knob 'max_leaf_size' must be in [1, 255], got 0");
-  EXPECT_EQ(error_of("bvh", {{"bins", 4}}), "bvh: knob 'bins' must be in [8, 256], got 4");
-  EXPECT_EQ(error_of("bvh", {{"max_leaf_size", 2.5}}), "bvh: knob 'max_leaf_size' must be an integer, got 2.5");
-  EXPECT_EQ(error_of("bvh", json::array({1})), "bvh: knobs must be a JSON object, got [1]");
-  EXPECT_EQ(error_of("auto", {{"naive_max_prims", true}}), "auto: knob 'naive_max_prims' must be an integer, got true");
+  EXPECT_EQ(factory_error("bvh", {{"max_depth", "3"}}), "bvh: knob 'max_depth' must be an integer, got \"3\"");
+  EXPECT_EQ(factory_error("bvh", {{"max_depth", 65}}), "bvh: knob 'max_depth' must be in [0, 64], got 65");
+  EXPECT_EQ(factory_error("bvh", {{"max_depth", -1}}), "bvh: knob 'max_depth' must be in [0, 64], got -1");
+  EXPECT_EQ(factory_error("bvh", {{"max_leaf_size", 0}}), "bvh: knob 'max_leaf_size' must be in [1, 255], got 0");
+  EXPECT_EQ(factory_error("bvh", {{"bins", 4}}), "bvh: knob 'bins' must be in [8, 256], got 4");
+  EXPECT_EQ(factory_error("bvh", {{"max_leaf_size", 2.5}}), "bvh: knob 'max_leaf_size' must be an integer, got 2.5");
+  EXPECT_EQ(factory_error("bvh", json::array({1})), "bvh: knobs must be a JSON object, got [1]");
+  EXPECT_EQ(factory_error("auto", {{"naive_max_prims", true}}), "auto: knob 'naive_max_prims' must be an integer, got true");
   // The knobs of embree are known (and checked) even in a build without Embree.
-  EXPECT_EQ(error_of("embree", {{"build_quality", "low"}}),
+  EXPECT_EQ(factory_error("embree", {{"build_quality", "low"}}),
             "embree: knob 'build_quality' must be one of medium|high, got \"low\"");
-  EXPECT_EQ(error_of("embree", {{"robust", 1}}), "embree: knob 'robust' must be true or false, got 1");
+  EXPECT_EQ(factory_error("embree", {{"robust", 1}}), "embree: knob 'robust' must be true or false, got 1");
   if (!accel::accel_built("embree")) {
-    EXPECT_EQ(error_of("embree", nullptr), "embree: not built (Embree 3 was not found; run scripts/setup)");
+    EXPECT_EQ(factory_error("embree", nullptr), "embree: not built (Embree 3 was not found; run scripts/setup)");
   }
 }
 

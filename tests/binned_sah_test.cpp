@@ -24,7 +24,7 @@ using accel::Aabb;
 using accel::BinnedSah;
 using accel::Vec3;
 
-std::vector<Aabb> random_boxes(std::size_t n, unsigned seed) {
+std::vector<Aabb> sah_boxes(std::size_t n, unsigned seed) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<float> pos(-100.0f, 100.0f), size(0.0f, 3.0f);
   std::vector<Aabb> boxes(n);
@@ -55,7 +55,7 @@ void expect_same(const Aabb& a, const Aabb& b) {
 
 TEST(BinnedSah, PartitionsLikeLomutoAndBoundsBothSides) {
   for (unsigned seed : {1u, 2u, 3u}) {
-    const std::vector<Aabb> boxes = random_boxes(1000 + seed * 37, seed);
+    const std::vector<Aabb> boxes = sah_boxes(1000 + seed * 37, seed);
     const auto n = std::uint32_t(boxes.size());
     BinnedSah sah(boxes, 16, 3.0f);
     std::vector<std::uint32_t> ids(n);
@@ -159,7 +159,7 @@ TEST(BinnedSah, FindPicksThePlaneAScalarSweepPicks) {
   for (int bins : {2, 3, 16, 33, 256})
     for (std::size_t n : {2u, 3u, 9u, 64u, 700u, 40000u}) {
       for (int flat_axes = 0; flat_axes < 3; ++flat_axes) {
-        std::vector<Aabb> boxes = random_boxes(n, unsigned(bins * 1000 + int(n) + flat_axes));
+        std::vector<Aabb> boxes = sah_boxes(n, unsigned(bins * 1000 + int(n) + flat_axes));
         // Coincident centroids on the first flat_axes axes (those axes are not binned), and on
         // every third box the same box again (equal costs, empty bins in between).
         for (std::size_t i = 0; i < boxes.size(); ++i) {
@@ -265,7 +265,7 @@ void expect_binned_near_full_sweep(const std::vector<Aabb>& boxes, const std::st
 }
 
 TEST(BinnedSah, BvhCostIsWithinFivePercentOfAFullSweepOnRandomBoxes) {
-  expect_binned_near_full_sweep(random_boxes(20000, 7), "20,000 random boxes");
+  expect_binned_near_full_sweep(sah_boxes(20000, 7), "20,000 random boxes");
 }
 
 // The standard models of ../shared/meshes, framed as `gen mesh` frames them: the boxes the build sees.

@@ -86,7 +86,7 @@ class Hostile : public ::testing::Test {
   fs::path dir_;
 };
 
-struct Case {
+struct HostileCase {
   std::string what;     ///< The hostile input, in words.
   std::string args;     ///< accelbench arguments (run in the test directory).
   std::string message;  ///< The exact last line of output (the message).
@@ -95,7 +95,7 @@ struct Case {
   int lines = 1;        ///< Lines of output: the message, after a summary for a sweep that ran.
 };
 
-void expect_case(const fs::path& dir, const Case& c) {
+void expect_case(const fs::path& dir, const HostileCase& c) {
   const CliRun r = accelbench(dir, c.args);
   EXPECT_EQ(r.status, c.status) << c.what << ": " << c.args << "\n" << r.output;
   ASSERT_FALSE(r.output.empty()) << c.what;
@@ -140,7 +140,7 @@ TEST_F(Hostile, ScenesAndSceneFiles) {
   huge_normal["planes"] = json::array({{{"normal", {1e30, 0, 0}}, {"offset", 0}, {"material", "glass"}}});
   write_text(dir_ / "normal.json", huge_normal.dump());
 
-  const std::vector<Case> cases = {
+  const std::vector<HostileCase> cases = {
       {"JSON nested 100,000 deep (render)", "render deep.json",
        "accelbench: deep.json: " + deep_path + ": nested deeper than 64 levels at line 1, column 65"},
       {"JSON nested 100,000 deep (convert)", "convert deep.json -o out.json",
@@ -202,7 +202,7 @@ TEST_F(Hostile, ScenesAndSceneFiles) {
       {"gen: a seed past 2^64", "gen random --seed 18446744073709551616 -o f.json",
        "accelbench: --seed: expected an integer in [0, 18446744073709551615], got '18446744073709551616'"},
   };
-  for (const Case& c : cases) expect_case(dir_, c);
+  for (const HostileCase& c : cases) expect_case(dir_, c);
   EXPECT_FALSE(fs::exists(dir_ / "out.json") && read_text(dir_ / "out.json").find("degenerate") != std::string::npos);
   // The converted scene with the huge normal loads back: its normal was normalised, not zeroed.
   EXPECT_EQ(accelbench(dir_, "render out.json --resolution 8x8 --accel naive").status, 0);
@@ -250,7 +250,7 @@ TEST_F(Hostile, SweepFilesAndFlags) {
   write_text(dir_ / "all_fail.json", R"({"scenes": ["five"], "structures": [{"name": "kdtree", "max_leaf_size": 0}],
                                          "resolution": "8x8", "repetitions": 1, "warmup": 0})");
   fs::create_symlink("/dev/zero", dir_ / "zero.json");
-  const std::vector<Case> cases = {
+  const std::vector<HostileCase> cases = {
       {"a sweep file nested 100,000 deep", "sweep --config deep.json",
        "accelbench: deep.json: /0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/...: "
        "nested deeper than 64 levels at line 1, column 65"},
@@ -288,7 +288,7 @@ TEST_F(Hostile, SweepFilesAndFlags) {
       {"tune: a structure without the knob", "tune five --accel bvh --placement leaves",
        "accelbench: --placement: bvh has no knob 'placement'"},
   };
-  for (const Case& c : cases) expect_case(dir_, c);
+  for (const HostileCase& c : cases) expect_case(dir_, c);
 }
 
 TEST_F(Hostile, ResumeAndMerge) {
@@ -324,7 +324,7 @@ TEST_F(Hostile, ResumeAndMerge) {
   write_jsonl("middle.jsonl", middle);
 
   const std::string sweep = "sweep --config tiny.json --out r.json --quiet --resume --jsonl ";
-  const std::vector<Case> cases = {
+  const std::vector<HostileCase> cases = {
       {"resume: a row whose key is corrupted", sweep + "bogus_key.jsonl",
        "accelbench: bogus_key.jsonl:2: /key: \"five|naive|{\\\"x\\\":1}\" is not a configuration of this sweep (in "
        "shard {\"count\":1,\"index\":0}); cannot --resume"},
@@ -343,7 +343,7 @@ TEST_F(Hostile, ResumeAndMerge) {
       {"resume: a line cut in the middle of the file", sweep + "middle.jsonl",
        "accelbench: middle.jsonl:4: ", 1, true},
   };
-  for (const Case& c : cases) {
+  for (const HostileCase& c : cases) {
     const std::string file = c.args.substr(c.args.rfind(' ') + 1);
     const std::string before = read_text(dir_ / file);
     expect_case(dir_, c);
@@ -369,7 +369,7 @@ TEST_F(Hostile, ResumeAndMerge) {
   m["rows"][1]["key"] = m["rows"][0]["key"];
   write_text(dir_ / "m_twice.json", m.dump());
   write_text(dir_ / "m_deep.json", std::string(100000, '[') + std::string(100000, ']'));
-  const std::vector<Case> merge_cases = {
+  const std::vector<HostileCase> merge_cases = {
       {"merge: a row whose key is a number", "merge m_key.json -o all.json",
        "accelbench: m_key.json: /rows/0/key: must be a string, got 5"},
       {"merge: shard index 5 of 2", "merge m_shard.json -o all.json",
@@ -384,7 +384,7 @@ TEST_F(Hostile, ResumeAndMerge) {
        "accelbench: m_deep.json: /0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/...: "
        "nested deeper than 64 levels at line 1, column 65"},
   };
-  for (const Case& c : merge_cases) expect_case(dir_, c);
+  for (const HostileCase& c : merge_cases) expect_case(dir_, c);
   EXPECT_FALSE(fs::exists(dir_ / "all.json"));
 }
 

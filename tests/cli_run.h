@@ -27,4 +27,9 @@ inline CliRun run(const std::string& shell_command, bool join_stderr = true) {
   return result;
 }
 
+#ifdef ACCELBENCH_CLI
+/// Runs the accelbench binary under test with `args` (one string, quoted as for /bin/sh).
+inline CliRun accelbench(const std::string& args) { return run(std::string(ACCELBENCH_CLI) + " " + args); }
+#endif
+
 }  // namespace cli_run

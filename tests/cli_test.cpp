@@ -21,7 +21,7 @@ namespace fs = std::filesystem;
 
 using cli_run::CliRun;
 
-CliRun accelbench(const std::string& args) { return cli_run::run(std::string(ACCELBENCH_CLI) + " " + args); }
+using cli_run::accelbench;
 
 class Cli : public ::testing::Test {
  protected:

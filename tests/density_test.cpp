@@ -32,7 +32,7 @@ using photon::PhotonMap;
 using photon::PhotonTreeKind;
 using photon::Vec3;
 
-constexpr float kInf = std::numeric_limits<float>::infinity();
+constexpr float kUnboundedRadius = std::numeric_limits<float>::infinity();
 const Vec3 kUp(0.0f, 0.0f, 1.0f);
 const Vec3 kDown(0.0f, 0.0f, -1.0f);
 
@@ -118,7 +118,7 @@ TEST(Density, FewerThanKUsesTheSearchDisc) {
   const Color box = photon::flux_density(map, nb, {DensityFilter::Box, 1.0f}, kUp);
   EXPECT_FLOAT_EQ(box.x, float(3.0 / (std::numbers::pi * 0.25)));
   // Unbounded: the farthest photon found is the radius.
-  map.gather(Vec3(0.0f), kUp, GatherParams{10, kInf, true, true}, nb);
+  map.gather(Vec3(0.0f), kUp, GatherParams{10, kUnboundedRadius, true, true}, nb);
   ASSERT_EQ(nb.size(), 4);
   EXPECT_EQ(photon::estimate_radius2(nb), 75.0f);
 }
@@ -135,7 +135,7 @@ TEST(Density, CoincidentPhotonsUseTheSearchDisc) {
     EXPECT_TRUE(std::isfinite(c.x) && c.x > 0.0f) << photon::name_of(f);
   }
   // Unbounded and coincident: nothing to measure an area by.
-  map.gather(Vec3(0.0f), kUp, GatherParams{3, kInf, true, true}, nb);
+  map.gather(Vec3(0.0f), kUp, GatherParams{3, kUnboundedRadius, true, true}, nb);
   EXPECT_EQ(photon::flux_density(map, nb, {DensityFilter::Box, 1.0f}, kUp), Color(0.0f));
 }
 

@@ -16,7 +16,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string error_of(const std::string& path, std::uint64_t limit = 1 << 20) {
+std::string read_error(const std::string& path, std::uint64_t limit = 1 << 20) {
   try {
     input::read_file(path, limit, "test file");
   } catch (const input::InputError& e) {
@@ -48,19 +48,19 @@ TEST_F(FileRead, RefusesWhatIsNotARegularFile) {
   fs::create_symlink("/dev/zero", path("zero"));
   fs::create_directories(path("dir.json"));
   ASSERT_EQ(::mkfifo(path("fifo").c_str(), 0644), 0);
-  EXPECT_EQ(error_of(path("zero")), path("zero") + ": is a character device, not a regular test file");
-  EXPECT_EQ(error_of("/dev/urandom"), "/dev/urandom: is a character device, not a regular test file");
-  EXPECT_EQ(error_of(path("dir.json")), path("dir.json") + ": is a directory, not a regular test file");
-  EXPECT_EQ(error_of(path("fifo")), path("fifo") + ": is a FIFO, not a regular test file");  // no writer: no hang
-  EXPECT_EQ(error_of(path("missing")), path("missing") + ": cannot open: No such file or directory");
+  EXPECT_EQ(read_error(path("zero")), path("zero") + ": is a character device, not a regular test file");
+  EXPECT_EQ(read_error("/dev/urandom"), "/dev/urandom: is a character device, not a regular test file");
+  EXPECT_EQ(read_error(path("dir.json")), path("dir.json") + ": is a directory, not a regular test file");
+  EXPECT_EQ(read_error(path("fifo")), path("fifo") + ": is a FIFO, not a regular test file");  // no writer: no hang
+  EXPECT_EQ(read_error(path("missing")), path("missing") + ": cannot open: No such file or directory");
 }
 
 TEST_F(FileRead, RefusesFilesOverTheLimit) {
   std::ofstream(path("big"), std::ios::binary) << std::string(3000, 'x');
-  EXPECT_EQ(error_of(path("big"), 2048), path("big") + ": 2.9 KiB is over the 2 KiB limit for test files");
+  EXPECT_EQ(read_error(path("big"), 2048), path("big") + ": 2.9 KiB is over the 2 KiB limit for test files");
   EXPECT_EQ(input::read_file(path("big"), 3000, "test file").size(), 3000u);
   // /proc files report size 0 but hold text: the read itself stops at the limit.
-  const std::string got = error_of("/proc/self/maps", 16);
+  const std::string got = read_error("/proc/self/maps", 16);
   EXPECT_EQ(got, "/proc/self/maps: more than 16 B is over the 16 B limit for test files");
 }
 

@@ -47,7 +47,7 @@ fs::path temp_dir(const std::string& name) {
 
 using cli_run::CliRun;
 
-CliRun accelbench(const std::string& args) { return cli_run::run(std::string(ACCELBENCH_CLI) + " " + args); }
+using cli_run::accelbench;
 
 harness::FrontsRequest small_request() {
   harness::FrontsRequest r;

@@ -51,7 +51,7 @@ struct Demo {
   }
 };
 
-std::string error_of(const json& j) {
+std::string table_error(const json& j) {
   try {
     Demo::knobs().from_json(j);
   } catch (const ConfigError& e) {
@@ -80,20 +80,20 @@ TEST(KnobTable, DefaultsComeFromTheStructAndRoundTrip) {
 }
 
 TEST(KnobTable, ErrorsAreOneLineNamingOwnerAndKnob) {
-  EXPECT_EQ(error_of({{"dept", 1}}), "demo: unknown knob 'dept' (its knobs: depth, radius, fast, flavour, photons)");
-  EXPECT_EQ(error_of({{"depth", "3"}}), "demo: knob 'depth' must be an integer, got \"3\"");
-  EXPECT_EQ(error_of({{"depth", 2.5}}), "demo: knob 'depth' must be an integer, got 2.5");
-  EXPECT_EQ(error_of({{"depth", 11}}), "demo: knob 'depth' must be in [0, 10], got 11");
-  EXPECT_EQ(error_of({{"depth", -1}}), "demo: knob 'depth' must be in [0, 10], got -1");
-  EXPECT_EQ(error_of({{"depth", 18446744073709551615ull}}),
+  EXPECT_EQ(table_error({{"dept", 1}}), "demo: unknown knob 'dept' (its knobs: depth, radius, fast, flavour, photons)");
+  EXPECT_EQ(table_error({{"depth", "3"}}), "demo: knob 'depth' must be an integer, got \"3\"");
+  EXPECT_EQ(table_error({{"depth", 2.5}}), "demo: knob 'depth' must be an integer, got 2.5");
+  EXPECT_EQ(table_error({{"depth", 11}}), "demo: knob 'depth' must be in [0, 10], got 11");
+  EXPECT_EQ(table_error({{"depth", -1}}), "demo: knob 'depth' must be in [0, 10], got -1");
+  EXPECT_EQ(table_error({{"depth", 18446744073709551615ull}}),
             "demo: knob 'depth' must be in [0, 10], got 18446744073709551615");
-  EXPECT_EQ(error_of({{"radius", 3}}), "demo: knob 'radius' must be in [0.0, 2.0], got 3");
-  EXPECT_EQ(error_of({{"radius", "wide"}}), "demo: knob 'radius' must be a number, got \"wide\"");
-  EXPECT_EQ(error_of({{"fast", 1}}), "demo: knob 'fast' must be true or false, got 1");
-  EXPECT_EQ(error_of({{"flavour", "sour"}}), "demo: knob 'flavour' must be one of plain|fancy, got \"sour\"");
-  EXPECT_EQ(error_of({{"flavour", 0}}), "demo: knob 'flavour' must be one of plain|fancy, got 0");
-  EXPECT_EQ(error_of(json::array({1})), "demo: knobs must be a JSON object, got [1]");
-  EXPECT_EQ(error_of({{"photons", 0}}), "demo: knob 'photons' must be in [1, 1000000000000], got 0");
+  EXPECT_EQ(table_error({{"radius", 3}}), "demo: knob 'radius' must be in [0.0, 2.0], got 3");
+  EXPECT_EQ(table_error({{"radius", "wide"}}), "demo: knob 'radius' must be a number, got \"wide\"");
+  EXPECT_EQ(table_error({{"fast", 1}}), "demo: knob 'fast' must be true or false, got 1");
+  EXPECT_EQ(table_error({{"flavour", "sour"}}), "demo: knob 'flavour' must be one of plain|fancy, got \"sour\"");
+  EXPECT_EQ(table_error({{"flavour", 0}}), "demo: knob 'flavour' must be one of plain|fancy, got 0");
+  EXPECT_EQ(table_error(json::array({1})), "demo: knobs must be a JSON object, got [1]");
+  EXPECT_EQ(table_error({{"photons", 0}}), "demo: knob 'photons' must be in [1, 1000000000000], got 0");
   // A struct filled in code gets the same checks.
   Demo bad;
   bad.depth = 99;
@@ -134,7 +134,7 @@ TEST(KnobTable, MarkdownAndDescriptionListEveryKnob) {
 
 using cli_run::CliRun;
 
-CliRun accelbench(const std::string& args) { return cli_run::run(std::string(ACCELBENCH_CLI) + " " + args); }
+using cli_run::accelbench;
 
 std::string factory_error(const std::string& structure, const json& knobs) {
   try {

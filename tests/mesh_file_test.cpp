@@ -44,7 +44,7 @@ void write(const fs::path& p, const std::string& bytes) {
 }
 
 /// The one-line message a bad file gets.
-std::string error_of(const std::string& bytes, MeshFormat format, const std::string& name) {
+std::string mesh_error(const std::string& bytes, MeshFormat format, const std::string& name) {
   try {
     tracer::parse_mesh(bytes, format, name);
   } catch (const tracer::SceneError& e) {
@@ -202,7 +202,7 @@ TEST(MeshFile, BadFilesGetOneLineNamingTheFile) {
   };
   for (const Case& c : cases) {
     const std::string name = c.format == MeshFormat::Obj ? "m.obj" : "m.ply";
-    EXPECT_EQ(error_of(c.bytes, c.format, name), c.message) << c.what;
+    EXPECT_EQ(mesh_error(c.bytes, c.format, name), c.message) << c.what;
   }
 }
 

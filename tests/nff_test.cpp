@@ -21,7 +21,7 @@ Scene parse(const std::string& text) {
 }
 
 /// The one-line error that parsing `text` raises, or "" when it parses.
-std::string error_of(const std::string& text) {
+std::string nff_error(const std::string& text) {
   try {
     parse(text);
   } catch (const SceneError& e) {
@@ -173,7 +173,7 @@ TEST(Nff, BrokenFilesGiveExactErrors) {
       {"v\nfrom 0 0 5\nfrom 0 0 5\n", "t.nff:3: 'v' gives 'from' twice"},
       {kView + "\x01\x02garbage\n", "t.nff:8: unknown entity '??garbage'"},
   };
-  for (const BrokenCase& c : cases) EXPECT_EQ(error_of(c.text), c.error) << c.text;
+  for (const BrokenCase& c : cases) EXPECT_EQ(nff_error(c.text), c.error) << c.text;
 }
 
 #ifdef ACCELBENCH_SPD_DIR
@@ -232,7 +232,7 @@ TEST(Nff, TruncatedAndGarbledFilesNeverCrash) {
   const std::string text = read_text(path);
   int parsed = 0, rejected = 0;
   for (std::size_t len = 0; len <= text.size(); len += 7) {
-    const std::string err = error_of(text.substr(0, len));
+    const std::string err = nff_error(text.substr(0, len));
     (err.empty() ? parsed : rejected)++;
     if (!err.empty()) {
       EXPECT_EQ(err.find('\n'), std::string::npos);
@@ -245,7 +245,7 @@ TEST(Nff, TruncatedAndGarbledFilesNeverCrash) {
     std::string noisy = text;
     for (int k = 0; k < 5; ++k)
       noisy[rng() % noisy.size()] = char(rng() % 256);
-    const std::string err = error_of(noisy);
+    const std::string err = nff_error(noisy);
     if (!err.empty()) {
       EXPECT_EQ(err.rfind("t.nff:", 0), 0u) << err;
     }

@@ -1,6 +1,8 @@
 // scripts/plot_knn.py draws the kNN figure, PNG and SVG, and prints its tables from a small
 // bench_photon output, and fails with one line on a file that is not one.
 
+#include "test_files.h"
+
 #include <gtest/gtest.h>
 
 #include <unistd.h>
@@ -21,10 +23,7 @@ int run_plot(const std::string& input, const fs::path& out, const fs::path& log)
   return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
 }
 
-std::string read(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
+using test_files::read;
 
 TEST(PlotKnn, DrawsTheFigureAndTablesFromASmallRun) {
   const fs::path dir = fs::temp_directory_path() / ("accelbench_plot_knn_" + std::to_string(getpid()));

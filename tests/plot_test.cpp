@@ -3,6 +3,7 @@
 // resolve is drawn hollow.
 
 #include "harness/fronts.h"
+#include "test_files.h"
 
 #include <gtest/gtest.h>
 
@@ -24,10 +25,7 @@ int run_plot(const std::string& input, const fs::path& out, const fs::path& log)
   return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
 }
 
-std::string read(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
+using test_files::read;
 
 TEST(Plot, DrawsEveryFigureFromTheSmallResultsFile) {
   const fs::path dir = fs::temp_directory_path() / ("accelbench_plot_" + std::to_string(getpid()));

@@ -3,6 +3,7 @@
 // and everything that is not a Scaling benchmark; a file with none gives one line and status 2.
 
 #include "cli_run.h"
+#include "test_files.h"
 
 #include <gtest/gtest.h>
 
@@ -26,10 +27,7 @@ int run_plot(const std::string& input, const fs::path& out, std::string& log) {
   return r.status;
 }
 
-std::string read(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
+using test_files::read;
 
 TEST(PlotTriangleScaling, DrawsTheFigureAndWritesItsNumbers) {
   const fs::path dir = fs::temp_directory_path() / ("accelbench_plot_scaling_" + std::to_string(getpid()));

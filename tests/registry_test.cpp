@@ -8,6 +8,7 @@
 #include "scenes_gen/generators.h"
 
 #include "cli_run.h"
+#include "test_files.h"
 
 #include <gtest/gtest.h>
 
@@ -26,10 +27,7 @@ using nlohmann::json;
 using ProcessRun = cli_run::CliRun;
 using cli_run::run;
 
-std::string read(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
+using test_files::read;
 
 std::vector<std::string> registry_names() {
   std::vector<std::string> out;

@@ -39,7 +39,7 @@ json valid_scene() {
   })");
 }
 
-std::string error_of(const json& doc) {
+std::string scene_json_error(const json& doc) {
   try {
     tracer::scene_from_json(doc);
   } catch (const tracer::SceneError& e) {
@@ -149,7 +149,7 @@ TEST(SceneJson, EveryBadValueNamesItsPath) {
       doc[ptr.parent_pointer()].erase(ptr.back());
     else
       doc[ptr] = c.value;
-    EXPECT_EQ(error_of(doc), c.message) << "at " << c.pointer;
+    EXPECT_EQ(scene_json_error(doc), c.message) << "at " << c.pointer;
   }
 }
 
@@ -157,7 +157,7 @@ TEST(SceneJson, EveryBadValueNamesItsPath) {
 TEST(SceneJson, TheRenderObjectIsItsKnobTable) {
   json doc = valid_scene();
   doc["render"] = {{"maxdepth", 3}};
-  EXPECT_EQ(error_of(doc), "/render/maxdepth: unknown key in render settings; did you mean 'max_depth'?");
+  EXPECT_EQ(scene_json_error(doc), "/render/maxdepth: unknown key in render settings; did you mean 'max_depth'?");
   const tracer::Scene s = tracer::scene_from_json(valid_scene());
   EXPECT_EQ(tracer::scene_to_json(s)["render"], tracer::RenderSettings::knobs().to_json(s.render));
   std::ifstream in(ACCELBENCH_SOURCE_DIR "/docs/scene-format.md");
@@ -169,7 +169,7 @@ TEST(SceneJson, TheRenderObjectIsItsKnobTable) {
 TEST(SceneJson, NaNsAreRejectedWhereTheyStand) {
   json doc = valid_scene();
   doc["spheres"][1]["radius"] = std::nan("");
-  EXPECT_EQ(error_of(doc),
+  EXPECT_EQ(scene_json_error(doc),
             "/spheres/1/radius: must be a finite number, got null");  // json dumps NaN as null
   // In text, a NaN literal (as Python's json module writes) is not JSON, yet is found in place.
   std::string text = valid_scene().dump();
@@ -236,7 +236,7 @@ TEST(SceneJson, IntegratorChoiceIsStoredAndRoundTrips) {
   EXPECT_FALSE(tracer::scene_to_json(tracer::scene_from_json(valid_scene())).contains("integrator"));
   for (const json& bad : {json(3), json{{"k", 20}}, json(""), json{{"name", ""}}}) {
     doc["integrator"] = bad;
-    EXPECT_EQ(error_of(doc).rfind("/integrator: ", 0), 0u) << bad.dump() << ": " << error_of(doc);
+    EXPECT_EQ(scene_json_error(doc).rfind("/integrator: ", 0), 0u) << bad.dump() << ": " << scene_json_error(doc);
   }
 }
 

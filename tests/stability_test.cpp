@@ -25,9 +25,7 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-cli_run::CliRun accelbench(const std::string& args) {
-  return cli_run::run(std::string(ACCELBENCH_CLI) + " " + args);
-}
+using cli_run::accelbench;
 
 class Stability : public ::testing::Test {
  protected:

@@ -22,7 +22,7 @@ namespace {
 using accel::Aabb;
 using accel::Vec3;
 
-std::vector<Aabb> random_boxes(int n, std::uint32_t seed, float extent = 5.0f) {
+std::vector<Aabb> scattered_boxes(int n, std::uint32_t seed, float extent = 5.0f) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<float> u(-extent, extent), r(0.05f, 0.15f);
   std::vector<Aabb> boxes;
@@ -101,7 +101,7 @@ void check_tree(const accel::WideBvh<W>& bvh, std::span<const Aabb> boxes, const
 
 template <int W>
 void invariants_across_knobs() {
-  const auto boxes = random_boxes(700, 3);
+  const auto boxes = scattered_boxes(700, 3);
   for (int depth : {0, 1, 2, 5, 64})
     for (int leaf : {1, 3, 8, 16}) {
       accel::WideBvhParams<W> p;
@@ -117,7 +117,7 @@ TEST(WideBvh, TreeInvariantsAcrossKnobs4) { invariants_across_knobs<4>(); }
 TEST(WideBvh, TreeInvariantsAcrossKnobs8) { invariants_across_knobs<8>(); }
 
 TEST(WideBvh, DepthZeroIsOneLeafAndNodesFillUp) {
-  const auto boxes = random_boxes(300, 5);
+  const auto boxes = scattered_boxes(300, 5);
   accel::WideBvhParams<8> p;
   p.max_depth = 0;
   const accel::Bvh8 one(boxes, p);
@@ -131,7 +131,7 @@ TEST(WideBvh, DepthZeroIsOneLeafAndNodesFillUp) {
 }
 
 TEST(WideBvh, LeafBoxesAreLeftOutWhenTheShapesFollowAndNothingElseChanges) {
-  const auto boxes = random_boxes(5000, 9);
+  const auto boxes = scattered_boxes(5000, 9);
   const accel::Bvh8 with(boxes, {}, accel::BuildLimits{});
   accel::BuildLimits limits;
   limits.shapes_follow = true;
@@ -181,7 +181,7 @@ TEST(WideBvh, LeafBoxesAreLeftOutWhenTheShapesFollowAndNothingElseChanges) {
 }
 
 TEST(WideBvh, MemoryBudgetErrorNamesTheKnob) {
-  const auto boxes = random_boxes(1000, 7);
+  const auto boxes = scattered_boxes(1000, 7);
   try {
     accel::Bvh4(boxes, {}, accel::BuildLimits{2048, {}});
     FAIL() << "expected ConfigError";
@@ -256,7 +256,7 @@ TEST(WideBvh, ClosestHitTestsTheNearestLeafPrimitiveFirst8) { nearest_leaf_primi
 /// the packet equal the sum of the single rays').
 template <int W>
 void occluded_packet_walks_each_ray_as_alone() {
-  const std::vector<Aabb> boxes = random_boxes(2000, 7, 4.0f);
+  const std::vector<Aabb> boxes = scattered_boxes(2000, 7, 4.0f);
   const accel::WideBvh<W> bvh(boxes);
   const auto hit = [&](std::uint32_t id, const accel::Ray& r) {
     const Vec3 c = (boxes[id].lo + boxes[id].hi) * 0.5f, oc = r.org - c;
@@ -327,7 +327,7 @@ void same_tree_at_any_thread_count() {
   // Large enough that ranges fork into tasks (accel/build_tasks.h) several levels deep and the
   // first passes bin in parallel; leaves of one primitive make the most nodes, which the tasks'
   // node slabs must hold without overlapping.
-  const auto boxes = random_boxes(60'000, 13, 20.0f);
+  const auto boxes = scattered_boxes(60'000, 13, 20.0f);
   for (int leaf : {accel::WideBvhParams<W>{}.max_leaf_size, 1}) {
     SCOPED_TRACE(testing::Message() << "max_leaf_size " << leaf);
     accel::WideBvhParams<W> one;
@@ -360,7 +360,7 @@ TEST(WideBvh, AMillionSpheresBuildCompactly) {
   // at most 100 bytes per sphere. The time (< 1 s on an idle machine) is measured by
   // bench_trace's Build/random1M; here it only has to finish.
   const int n = 1'000'000;
-  const auto boxes = random_boxes(n, 11, 100.0f);
+  const auto boxes = scattered_boxes(n, 11, 100.0f);
   std::vector<accel::SphereShape> spheres(boxes.size());
   for (std::size_t i = 0; i < boxes.size(); ++i) spheres[i] = {boxes[i].center(), 0.5f * (boxes[i].hi.x - boxes[i].lo.x)};
   accel::Bvh8 bvh(boxes);
