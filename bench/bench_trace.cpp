@@ -94,7 +94,7 @@ constexpr int kTile = 4;
 void trace(const tracer::Geometry& geometry, const accel::AnyAccel& a, const std::vector<Ray>& rays,
            std::vector<Hit>& hits) {
   hits.resize(rays.size());
-  tracer::with_intersector(geometry, a, false, tracer::TriangleTest::Watertight, [&](const auto& isect) {
+  tracer::with_intersector<false>(geometry, a, tracer::TriangleTest::Watertight, [&](const auto& isect) {
     for (std::size_t i = 0; i < rays.size(); ++i) hits[i] = isect.closest(rays[i]);
   });
 }
@@ -104,7 +104,7 @@ void trace(const tracer::Geometry& geometry, const accel::AnyAccel& a, const std
 void trace_packets(const tracer::Geometry& geometry, const accel::AnyAccel& a, const std::vector<Ray>& rays,
                    std::vector<Hit>& hits) {
   hits.resize(rays.size());
-  tracer::with_intersector(geometry, a, false, tracer::TriangleTest::Watertight, [&](const auto& isect) {
+  tracer::with_intersector<false>(geometry, a, tracer::TriangleTest::Watertight, [&](const auto& isect) {
     constexpr std::size_t kPacket = std::decay_t<decltype(isect)>::kPacketMax;
     for (std::size_t i = 0; i < rays.size(); i += kPacket) {
       const std::size_t n = std::min(kPacket, rays.size() - i);
@@ -117,7 +117,7 @@ void trace_packets(const tracer::Geometry& geometry, const accel::AnyAccel& a, c
 void occlude(const tracer::Geometry& geometry, const accel::AnyAccel& a, const std::vector<Ray>& rays,
              std::vector<std::uint8_t>& blocked) {
   blocked.resize(rays.size());
-  tracer::with_intersector(geometry, a, false, tracer::TriangleTest::Watertight, [&](const auto& isect) {
+  tracer::with_intersector<false>(geometry, a, tracer::TriangleTest::Watertight, [&](const auto& isect) {
     for (std::size_t i = 0; i < rays.size(); ++i) blocked[i] = isect.occluded(rays[i]);
   });
 }

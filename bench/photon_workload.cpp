@@ -33,7 +33,7 @@ PhotonWorkload cornell_photon_workload(std::size_t n_photons, int width, int hei
   w.emitted = pass.emitted;
 
   const tracer::PinholeCamera camera(scene.camera, width, height);
-  tracer::with_intersector(scene.geometry, structure, false, tracer::TriangleTest::Watertight, [&](const auto& isect) {
+  tracer::with_intersector<false>(scene.geometry, structure, tracer::TriangleTest::Watertight, [&](const auto& isect) {
     for (int y = 0; y < height; ++y)
       for (int x = 0; x < width; ++x) {
         const accel::Ray ray = camera.primary_ray(x, y);

@@ -318,7 +318,7 @@ Reference reference_for(const tracer::Geometry& geometry, std::uint32_t seed,
   ref.rays = make_rays(geometry, seed);
   const accel::AnyAccel naive = accel::make_accel("naive", nullptr, geometry.primitive_bounds());
   auto run = [&] {
-    tracer::with_intersector(geometry, naive, false, triangles_by, [&](const auto& isect) {
+    tracer::with_intersector<false>(geometry, naive, triangles_by, [&](const auto& isect) {
       trace_all(isect, ref.rays, ref.closest, ref.occluded);
     });
   };
@@ -406,7 +406,7 @@ struct Agreement {
 Agreement agreement(const tracer::Geometry& geometry, const accel::AnyAccel& a, const Reference& ref) {
   std::vector<Hit> closest, packets;
   std::vector<bool> occluded, occluded_packets;
-  tracer::with_intersector(geometry, a, false, ref.triangles_by, [&](const auto& isect) {
+  tracer::with_intersector<false>(geometry, a, ref.triangles_by, [&](const auto& isect) {
     trace_all(isect, ref.rays, closest, occluded);
     packets = trace_packets(isect, ref.rays, occluded_packets);
   });

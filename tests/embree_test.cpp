@@ -235,7 +235,7 @@ void expect_peer_agrees_at_every_isa(const std::string& peer, const nlohmann::js
   for (int y = 0; y < 180; ++y)
     for (int x = 0; x < 240; ++x) rays.push_back(camera.primary_ray(x, y));
   std::vector<tracer::Hit> want(rays.size());
-  tracer::with_intersector(g, ref, false, tracer::TriangleTest::Watertight, [&](const auto& isect) {
+  tracer::with_intersector<false>(g, ref, tracer::TriangleTest::Watertight, [&](const auto& isect) {
     for (std::size_t i = 0; i < rays.size(); ++i) want[i] = isect.closest(rays[i]);
   });
   std::mt19937 rng(20);
@@ -251,7 +251,7 @@ void expect_peer_agrees_at_every_isa(const std::string& peer, const nlohmann::js
   }
   want.resize(rays.size());
   std::vector<bool> blocked(shadow.size());
-  tracer::with_intersector(g, ref, false, tracer::TriangleTest::Watertight, [&](const auto& isect) {
+  tracer::with_intersector<false>(g, ref, tracer::TriangleTest::Watertight, [&](const auto& isect) {
     for (std::size_t i = camera_rays; i < rays.size(); ++i) want[i] = isect.closest(rays[i]);
     for (std::size_t i = 0; i < shadow.size(); ++i) blocked[i] = isect.occluded(shadow[i]);
   });
@@ -273,7 +273,7 @@ void expect_peer_agrees_at_every_isa(const std::string& peer, const nlohmann::js
         a.variant());
     std::vector<tracer::Hit> single(rays.size()), packets(rays.size());
     std::vector<bool> occluded(shadow.size()), occluded_packets(shadow.size());
-    tracer::with_intersector(g, a, false, tracer::TriangleTest::Watertight, [&](const auto& isect) {
+    tracer::with_intersector<false>(g, a, tracer::TriangleTest::Watertight, [&](const auto& isect) {
       for (std::size_t i = 0; i < rays.size(); ++i) single[i] = isect.closest(rays[i]);
       for (std::size_t i = 0; i < rays.size(); i += 16) {
         const std::size_t n = std::min<std::size_t>(16, rays.size() - i);

@@ -294,7 +294,7 @@ std::uint64_t escapes(const tracer::MeshData& mesh, float inside, TriangleTest t
   std::uniform_int_distribution<std::size_t> pick(0, mesh.triangles.size() - 1);
   std::uniform_int_distribution<int> corner(0, 2);
   std::uint64_t out = 0;
-  tracer::with_intersector(g, bvh, false, test, [&](const auto& isect) {
+  tracer::with_intersector<false>(g, bvh, test, [&](const auto& isect) {
     for (std::uint64_t i = 0; i < rays; ++i) {
       const auto& t = mesh.triangles[pick(rng)];
       const int c = corner(rng);

@@ -255,23 +255,28 @@ inline void attach_geometry(accel::AnyAccel& a, const Geometry& geometry) {
 }
 
 /// Calls fn(intersector) with the intersector specialised for this structure, this scene's kind
-/// set and the counting flag, testing triangles by `triangles_by`. Everything fn instantiates is
-/// compiled once per combination (the triangle routine is a predictable branch per test).
-template <class Fn>
-decltype(auto) with_intersector(const Geometry& geometry, const accel::AnyAccel& any,
-                                bool counting, TriangleTest triangles_by, Fn&& fn) {
+/// set and the counting flag Count, testing triangles by `triangles_by`. Everything fn
+/// instantiates is compiled once per combination (the triangle routine is a predictable branch
+/// per test). A caller that never counts names Count and compiles half the loops.
+template <bool Count, class Fn>
+decltype(auto) with_intersector(const Geometry& geometry, const accel::AnyAccel& any, TriangleTest triangles_by,
+                                Fn&& fn) {
   return std::visit(
       [&](const auto& structure) -> decltype(auto) {
         using S = std::decay_t<decltype(structure)>;
-        const bool spheres_only = geometry.kind_set() == KindSet::SpheresOnly;
-        if (counting) {
-          if (spheres_only) return fn(Intersector<KindSet::SpheresOnly, true, S>(geometry, structure, triangles_by));
-          return fn(Intersector<KindSet::Mixed, true, S>(geometry, structure, triangles_by));
-        }
-        if (spheres_only) return fn(Intersector<KindSet::SpheresOnly, false, S>(geometry, structure, triangles_by));
-        return fn(Intersector<KindSet::Mixed, false, S>(geometry, structure, triangles_by));
+        if (geometry.kind_set() == KindSet::SpheresOnly)
+          return fn(Intersector<KindSet::SpheresOnly, Count, S>(geometry, structure, triangles_by));
+        return fn(Intersector<KindSet::Mixed, Count, S>(geometry, structure, triangles_by));
       },
       any.variant());
+}
+
+/// with_intersector<Count> with the counting flag chosen at run time.
+template <class Fn>
+decltype(auto) with_intersector(const Geometry& geometry, const accel::AnyAccel& any,
+                                bool counting, TriangleTest triangles_by, Fn&& fn) {
+  if (counting) return with_intersector<true>(geometry, any, triangles_by, fn);
+  return with_intersector<false>(geometry, any, triangles_by, fn);
 }
 
 }  // namespace tracer
