@@ -71,6 +71,7 @@ def main():
             sys.exit(f"plot_stability: {f}: not an accelbench stability file")
         docs.append(doc)
 
+    same_size = len({tuple(doc["resolution"]) for doc in docs}) == 1
     fig, axes = plt.subplots(len(docs), len(GROUPS), figsize=(4.2 * len(GROUPS), 2.6 * len(docs)),
                              squeeze=False, sharey=True)
     for row, doc in enumerate(docs):
@@ -91,7 +92,9 @@ def main():
             if row == len(docs) - 1:
                 ax.set_xlabel("k (" + title + ")")
             if col == 0:
-                ax.set_ylabel(scene_name(doc) + "\npixels > 1% off")
+                # Rows measured at different image sizes say their own.
+                size = "" if same_size else "{}x{}: ".format(*doc["resolution"])
+                ax.set_ylabel(scene_name(doc) + "\n" + size + "pixels > 1% off")
             if row == 0 and col == 0:
                 ax.legend(fontsize=7, loc="upper left")
             if col == 1:
@@ -99,8 +102,9 @@ def main():
                           else "differ from naive: " + ", ".join(bad))
                 ax.set_title(status, fontsize=8, color="black" if not bad else "red")
     res = docs[0]["resolution"]
+    setting = f"{res[0]}x{res[1]}, " if same_size else ""
     fig.suptitle(f"Stability: whole scenes moved and scaled, float renderer against the double "
-                 f"reference ({res[0]}x{res[1]}, {docs[0]['integrator']})", fontsize=10)
+                 f"reference ({setting}{docs[0]['integrator']})", fontsize=10)
     fig.tight_layout()
     note = machine_note([doc.get("machine") for doc in docs])
     if note:
