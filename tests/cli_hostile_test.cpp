@@ -5,6 +5,7 @@
 #include "cli_run.h"
 
 #include "accel/isa.h"
+#include "test_files.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -32,12 +33,7 @@ CliRun accelbench(const fs::path& dir, const std::string& args) {
   return cli_run::run("cd '" + dir.string() + "' && timeout 60 " + std::string(ACCELBENCH_CLI) + " " + args);
 }
 
-std::string read_text(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using test_files::read;
 
 void write_text(const fs::path& p, const std::string& text) { std::ofstream(p, std::ios::binary) << text; }
 
@@ -58,7 +54,7 @@ class Hostile : public ::testing::Test {
     if (!fs::exists(dir_ / "five.json")) {
       EXPECT_EQ(accelbench(dir_, "gen five -o five.json").status, 0);
     }
-    return json::parse(read_text(dir_ / "five.json"));
+    return json::parse(read(dir_ / "five.json"));
   }
 
   /// A tiny sweep (two scenes, naive and two kd-trees), run to the end into t.json and t.jsonl.
@@ -73,7 +69,7 @@ class Hostile : public ::testing::Test {
 
   std::vector<std::string> jsonl_lines() {
     std::vector<std::string> lines;
-    std::istringstream in(read_text(dir_ / "t.jsonl"));
+    std::istringstream in(read(dir_ / "t.jsonl"));
     for (std::string l; std::getline(in, l);) lines.push_back(l);
     return lines;
   }
@@ -125,7 +121,7 @@ TEST_F(Hostile, ScenesAndSceneFiles) {
   write_text(dir_ / "empty.ply", "");
   ::mkfifo((dir_ / "fifo.json").c_str(), 0644);
   // Duplicate keys: "spheres": [] appended would have rendered an empty scene.
-  std::string dup = read_text(dir_ / "five.json");
+  std::string dup = read(dir_ / "five.json");
   dup.erase(dup.find_last_of('}'));
   write_text(dir_ / "dup.json", dup + ",\n \"spheres\": []\n}\n");
   json big = doc;
@@ -203,7 +199,7 @@ TEST_F(Hostile, ScenesAndSceneFiles) {
        "accelbench: --seed: expected an integer in [0, 18446744073709551615], got '18446744073709551616'"},
   };
   for (const HostileCase& c : cases) expect_case(dir_, c);
-  EXPECT_FALSE(fs::exists(dir_ / "out.json") && read_text(dir_ / "out.json").find("degenerate") != std::string::npos);
+  EXPECT_FALSE(fs::exists(dir_ / "out.json") && read(dir_ / "out.json").find("degenerate") != std::string::npos);
   // The converted scene with the huge normal loads back: its normal was normalised, not zeroed.
   EXPECT_EQ(accelbench(dir_, "render out.json --resolution 8x8 --accel naive").status, 0);
 }
@@ -345,14 +341,14 @@ TEST_F(Hostile, ResumeAndMerge) {
   };
   for (const HostileCase& c : cases) {
     const std::string file = c.args.substr(c.args.rfind(' ') + 1);
-    const std::string before = read_text(dir_ / file);
+    const std::string before = read(dir_ / file);
     expect_case(dir_, c);
-    EXPECT_EQ(read_text(dir_ / file), before) << c.what << ": the file was changed";
+    EXPECT_EQ(read(dir_ / file), before) << c.what << ": the file was changed";
     EXPECT_FALSE(fs::exists(dir_ / "r.json")) << c.what << ": a results file was written";
   }
 
   // merge: rows and shard metadata are checked against the sweep they claim to belong to.
-  const json results = json::parse(read_text(dir_ / "t.json"));
+  const json results = json::parse(read(dir_ / "t.json"));
   json m = results;
   m["rows"][0]["key"] = 5;
   write_text(dir_ / "m_key.json", m.dump());

@@ -1,4 +1,5 @@
 #include "tracer/nff.h"
+#include "test_files.h"
 
 #include <gtest/gtest.h>
 
@@ -182,10 +183,7 @@ const std::filesystem::path kSpdDir = ACCELBENCH_SPD_DIR;
 const std::filesystem::path kSpdDir;
 #endif
 
-std::string read_text(const std::filesystem::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-}
+using test_files::read;
 
 struct SpdCounts {
   const char* file;
@@ -229,7 +227,7 @@ INSTANTIATE_TEST_SUITE_P(
 TEST(Nff, TruncatedAndGarbledFilesNeverCrash) {
   const auto path = kSpdDir / "balls_sf2.nff";
   if (!std::filesystem::exists(path)) GTEST_SKIP() << "SPD scenes not found at " << path;
-  const std::string text = read_text(path);
+  const std::string text = read(path);
   int parsed = 0, rejected = 0;
   for (std::size_t len = 0; len <= text.size(); len += 7) {
     const std::string err = nff_error(text.substr(0, len));

@@ -2,6 +2,7 @@
 // `accelbench --help` lists, and every file it links to exists.
 
 #include "cli_run.h"
+#include "test_files.h"
 
 #include <gtest/gtest.h>
 
@@ -14,12 +15,9 @@
 
 namespace {
 
-std::string read_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
+using test_files::read;
 
-std::string readme() { return read_file(ACCELBENCH_SOURCE_DIR "/README.md"); }
+std::string readme() { return read(ACCELBENCH_SOURCE_DIR "/README.md"); }
 
 /// The subcommands `accelbench --help` lists: the indented names under "Subcommands:".
 std::set<std::string> subcommands_of_help() {
