@@ -29,13 +29,14 @@
 
 #include "accel/accel.h"
 #include "accel/build_threads.h"
+#include "bench_rays.h"
+#include "bench_scenes.h"
+#include "bench_validation.h"
 #include "scenes_gen/generators.h"
 #include "scenes_gen/mesh_scenes.h"
 #include "tracer/build_accel.h"
-#include "tracer/camera.h"
 #include "tracer/image_compare.h"
 #include "tracer/intersector.h"
-#include "tracer/offset_ray.h"
 #include "tracer/render.h"
 #include "tracer/scene_io.h"
 #include "validated_main.h"
@@ -52,12 +53,9 @@
 #include <filesystem>
 #include <ctime>
 #include <map>
-#include <optional>
 #include <memory>
-#include <random>
 #include <span>
 #include <string>
-#include <tuple>
 #include <vector>
 
 namespace {
@@ -66,6 +64,15 @@ using accel::Ray;
 using accel::Vec3;
 using nlohmann::json;
 using tracer::Hit;
+using bench::blocked_mismatch;
+using bench::hit_mismatch;
+using bench::is_exact;
+using bench::is_mesh_scene;
+using bench::kBuildOnlyMeshScene;
+using bench::kMeshScenes;
+using bench::kSpotGrids;
+using bench::kTessellated;
+using bench::Validation;
 
 constexpr int kWidth = 1024;
 constexpr int kHeight = 768;
@@ -150,120 +157,13 @@ struct BenchScene {
   std::map<RaySet, std::unique_ptr<RayData>> sets;
 };
 
-std::vector<Ray> camera_rays(const tracer::Scene& scene) {
-  const tracer::PinholeCamera camera(scene.camera, kWidth, kHeight);
-  std::vector<Ray> rays;
-  rays.reserve(std::size_t(kWidth) * kHeight);
-  for (int y = 0; y < kHeight; ++y)
-    for (int x = 0; x < kWidth; ++x) rays.push_back(camera.primary_ray(x, y));
-  return rays;
-}
-
-/// Secondary rays off the camera hits (of bounded primitives, not the floor): mirror reflections at even hits, uniformly random
-/// directions over the hemisphere at odd ones (diffuse and shadow-like). Seeded.
-std::vector<Ray> spawned_rays(const tracer::Geometry& g, const std::vector<Ray>& primary,
-                              const std::vector<Hit>& hits) {
-  std::mt19937 rng(2024);
-  std::normal_distribution<float> gauss(0.0f, 1.0f);
-  std::vector<Ray> out;
-  std::size_t k = 0;
-  for (std::size_t i = 0; i < primary.size(); ++i) {
-    if (!hits[i].found() || hits[i].is_plane()) continue;
-    const Ray& r = primary[i];
-    const tracer::SurfacePoint sp = tracer::surface_point(g, r, hits[i], tracer::TriangleTest::Watertight);
-    const Vec3 n = sp.n_geo;
-    Vec3 d;
-    if (k++ % 2 == 0) {
-      d = r.dir - 2.0f * glm::dot(r.dir, n) * n;
-    } else {
-      // z, y, x, sequenced: as gcc evaluated Vec3(gauss(rng), gauss(rng), gauss(rng)), whose
-      // argument order C++ leaves unspecified (clang drew other rays from it).
-      const float gz = gauss(rng), gy = gauss(rng), gx = gauss(rng);
-      d = glm::normalize(Vec3(gx, gy, gz));
-      if (glm::dot(d, n) < 0.0f) d = -d;
-    }
-    out.push_back(tracer::spawn_ray(sp, d));
-  }
-  return out;
-}
-
-/// Shadow rays as the Whitted integrator casts them: from every bounded camera hit to every
-/// light on its side, leaving on the lit side and ending just short of the light.
-std::vector<Ray> shadow_rays(const tracer::Scene& scene, const std::vector<Ray>& primary, const std::vector<Hit>& hits) {
-  const tracer::Geometry& g = scene.geometry;
-  std::vector<Ray> out;
-  for (std::size_t i = 0; i < primary.size(); ++i) {
-    if (!hits[i].found() || hits[i].is_plane()) continue;
-    const tracer::SurfacePoint sp = tracer::surface_point(g, primary[i], hits[i], tracer::TriangleTest::Watertight);
-    const Vec3 n = glm::dot(sp.n_geo, primary[i].dir) > 0.0f ? -sp.n_geo : sp.n_geo;
-    const Vec3 origin = tracer::offset_ray_origin(sp, n);
-    for (const tracer::PointLight& light : scene.lights)
-      if (glm::dot(light.position - sp.p, n) > 0.0f) out.push_back(tracer::segment_to(origin, light.position));
-  }
-  return out;
-}
-
-/// The triangle-mesh scenes: three of the shared standard models, framed on a floor, and a
-/// million triangles of instanced bunnies (mesh_grid). Present only with ../shared/meshes.
-const std::vector<std::string> kMeshScenes = {"bunny", "ogre", "nefertiti", "grid1M"};
-
-/// Ten million triangles of instanced bunnies, for build times only (naive could not check rays).
-const std::string kBuildOnlyMeshScene = "grid10M";
-
-/// The scaling figure's scenes: copies of spot (the smallest shared model, 5,856 triangles) in a
-/// grid, from one copy to 10^7 triangles, and spheres8000 with each sphere an icosphere of 0 to 3
-/// subdivisions (160,000 to 10,240,000 triangles).
-const std::vector<std::pair<std::string, std::uint64_t>> kSpotGrids = {
-    {"spots_6e3", 5'856}, {"spots_1e4", 10'000}, {"spots_1e5", 100'000}, {"spots_1e6", 1'000'000},
-    {"spots_1e7", 10'000'000}};
-const std::vector<std::pair<std::string, std::uint64_t>> kTessellated = {
-    {"tess_L0", 0}, {"tess_L1", 1}, {"tess_L2", 2}, {"tess_L3", 3}};
-
-/// The generator options of a scaling scene, or nothing for another name.
-std::optional<std::pair<std::string, scenes_gen::GenOptions>> scaling_scene(const std::string& name) {
-  for (const auto& [label, count] : kSpotGrids)
-    if (label == name) {
-      scenes_gen::GenOptions gen;
-      gen.model = "spot";
-      gen.count = count;
-      return std::pair{std::string("mesh_grid"), gen};
-    }
-  for (const auto& [label, level] : kTessellated)
-    if (label == name) {
-      scenes_gen::GenOptions gen;
-      gen.count = level;
-      return std::pair{std::string("tessellated_spheres"), gen};
-    }
-  return std::nullopt;
-}
-
-bool is_mesh_scene(const std::string& name) {
-  return name == kBuildOnlyMeshScene || scaling_scene(name) ||
-         std::find(kMeshScenes.begin(), kMeshScenes.end(), name) != kMeshScenes.end();
-}
-
-/// A benchmark scene by name: a generator's name, random1M (a million random spheres), or one
-/// of kMeshScenes.
+/// A benchmark scene by name (bench_scene), generated once per process.
 BenchScene& scene_named(const std::string& name) {
   static std::map<std::string, std::unique_ptr<BenchScene>> cache;
   auto& slot = cache[name];
   if (!slot) {
     slot = std::make_unique<BenchScene>();
-    scenes_gen::GenOptions gen;
-    std::string generator = name;
-    if (name == "random1M") {
-      generator = "random";
-      gen.count = 1'000'000;
-    } else if (name == "grid1M" || name == kBuildOnlyMeshScene) {
-      generator = "mesh_grid";
-      gen.count = name == "grid1M" ? 1'000'000 : 10'000'000;
-    } else if (const auto scaling = scaling_scene(name)) {
-      std::tie(generator, gen) = *scaling;
-    } else if (is_mesh_scene(name)) {
-      generator = "mesh";
-      gen.model = name;
-    }
-    slot->scene = scenes_gen::generate(generator, gen);
+    slot->scene = bench::bench_scene(name);
     slot->boxes = slot->scene.geometry.primitive_bounds();
   }
   return *slot;
@@ -284,7 +184,7 @@ RayData& ray_data(const std::string& scene_name, RaySet set) {
   if (slot) return *slot;
   auto d = std::make_unique<RayData>();
   if (set == RaySet::Coherent) {
-    d->rays = camera_rays(bs.scene);
+    d->rays = bench::camera_rays(bs.scene, kWidth, kHeight);
   } else if (set == RaySet::Packets) {
     // The camera rays reordered tile by tile, with their reference and naive's timing.
     const RayData& primary = ray_data(scene_name, RaySet::Coherent);
@@ -303,10 +203,10 @@ RayData& ray_data(const std::string& scene_name, RaySet set) {
     return *slot;
   } else if (set == RaySet::Incoherent) {
     const RayData& primary = ray_data(scene_name, RaySet::Coherent);
-    d->rays = spawned_rays(bs.scene.geometry, primary.rays, primary.reference);
+    d->rays = bench::spawned_rays(bs.scene.geometry, primary.rays, primary.reference);
   } else {
     const RayData& primary = ray_data(scene_name, RaySet::Coherent);
-    d->rays = shadow_rays(bs.scene, primary.rays, primary.reference);
+    d->rays = bench::shadow_rays(bs.scene, primary.rays, primary.reference);
   }
   const bool any_hit = set == RaySet::Shadow;
   const tracer::Geometry& g = bs.scene.geometry;
@@ -355,100 +255,6 @@ RayData& ray_data(const std::string& scene_name, RaySet set) {
   d->naive_s_per_ray = best / double(d->naive_sample.size());
   slot = std::move(d);
   return *slot;
-}
-
-/// A structure whose own primitive routine answers (StructureInfo::exact false, embree_points,
-/// embree_triangles) is validated within this tolerance: another primitive, or t more than
-/// kToleranceT relative from naive's, for at most this share of the rays (or any-hit answers),
-/// and every hit point within kToleranceT of the size of its coordinates (max(|org|, t |dir|)) of
-/// naive's surface, measured along naive's normal there: a short secondary ray's t carries an ulp
-/// of its origin, a large part of a t near 0, and a grazing ray's t is ill-conditioned (its error
-/// divided by the cosine), which moves the point along the surface, not off it.
-constexpr double kToleranceShare = 0.001;
-constexpr double kToleranceT = 1e-5;
-/// Its whole render is validated by the share of pixels more than 1% off naive's
-/// (tracer::kPeerPixelsOffShare).
-
-bool is_exact(const std::string& name) {
-  const accel::StructureInfo* info = accel::find_structure(name);
-  return !info || info->exact;
-}
-
-/// The outcome of validating a structure's answers against naive's.
-struct Validation {
-  std::string why;             ///< Why it fails; "" when it passes.
-  std::size_t self_hits = 0;   ///< A peer's hits within the rounding of the ray's origin (at_origin).
-};
-
-/// A peer's hit within the rounding of the ray's own origin: t |dir| at most kToleranceT of
-/// |org|. Embree's default triangle routine reports such hits on the triangle a secondary ray
-/// leaves (ogre: 120 of 110,953 shadow rays, at t near 1e-11), where the offset our watertight
-/// routine's error bound gives the origin is enough for ours. Counted apart (counter
-/// peer_self_hits), not as another answer: they are the peer routine's acne, not a lost primitive.
-bool at_origin(const Ray& ray, float t) {
-  return t < accel::kInfinity &&
-         double(t) * double(glm::length(ray.dir)) <= kToleranceT * double(glm::length(ray.org));
-}
-
-/// Whether `got` (the hits of `rays`) passes the check against naive's `want`: bit for bit (same
-/// primitive, bit-equal t) for an exact structure, else within the tolerance, where naive's point
-/// on a neighbouring primitive (t within 1e-5: a ray through a shared edge, coincident faces)
-/// agrees.
-Validation hit_mismatch(const tracer::Geometry& g, const std::vector<Ray>& rays, const std::vector<Hit>& got,
-                        const std::vector<Hit>& want, bool exact) {
-  Validation v;
-  std::size_t bad = 0, other = 0;
-  double max_point = 0.0;
-  for (std::size_t i = 0; i < want.size(); ++i) {
-    bad += got[i].prim != want[i].prim ||
-           std::bit_cast<std::uint32_t>(got[i].t) != std::bit_cast<std::uint32_t>(want[i].t);
-    const double dt = std::abs(double(got[i].t) - double(want[i].t));
-    if (got[i].prim != want[i].prim) {
-      if (at_origin(rays[i], got[i].t))
-        ++v.self_hits;
-      else if (!(got[i].found() && want[i].found() && !got[i].is_plane() && !want[i].is_plane() &&
-                 dt <= kToleranceT * double(want[i].t)))
-        ++other;
-    } else if (want[i].found() && want[i].t > 0.0f) {
-      other += dt > kToleranceT * double(want[i].t);
-      if (exact) continue;
-      const double len = double(glm::length(rays[i].dir));
-      const Vec3 n = tracer::surface_point(g, rays[i], want[i], tracer::TriangleTest::Watertight).n_geo;
-      const double cos = std::abs(double(glm::dot(rays[i].dir, n))) / (len * double(glm::length(n)));
-      const double off = dt * len * cos / std::max(double(glm::length(rays[i].org)), double(want[i].t) * len);
-      max_point = std::max(max_point, off);
-    }
-  }
-  const std::string of = " of " + std::to_string(want.size()) + " rays";
-  if (exact) {
-    if (bad) v.why = std::to_string(bad) + of + " differ from naive";
-  } else if (double(other) > kToleranceShare * double(want.size())) {
-    v.why = std::to_string(other) + of + " hit another primitive than naive or t more than 1e-5 off (tolerance 0.1%)";
-  } else if (max_point > kToleranceT) {
-    v.why = "a hit point lies " + std::to_string(max_point) + " of its coordinates off naive's surface (tolerance 1e-5)";
-  }
-  return v;
-}
-
-/// The same for any-hit answers; `closest_t(ray)` is the structure's closest hit, asked only of
-/// the rays it answers otherwise than naive, to tell a peer's hits at the origin apart.
-template <class ClosestT>
-Validation blocked_mismatch(const std::vector<Ray>& rays, const std::vector<std::uint8_t>& got,
-                            const std::vector<std::uint8_t>& want, bool exact, ClosestT&& closest_t) {
-  Validation v;
-  std::size_t bad = 0;
-  for (std::size_t i = 0; i < want.size(); ++i) {
-    if (got[i] == want[i]) continue;
-    if (!exact && got[i] && at_origin(rays[i], closest_t(rays[i])))
-      ++v.self_hits;
-    else
-      ++bad;
-  }
-  const bool fails = exact ? bad > 0 : double(bad) > kToleranceShare * double(want.size());
-  if (fails)
-    v.why = std::to_string(bad) + " of " + std::to_string(want.size()) + " rays differ from naive" +
-            (exact ? "" : " (tolerance 0.1%)");
-  return v;
 }
 
 /// Builds a structure, or skips the benchmark with the factory's message.
