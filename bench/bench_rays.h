@@ -1,5 +1,5 @@
 #pragma once
-// The ray sets the tracing benchmarks trace (bench_trace): camera rays, rays
+// The ray sets the tracing benchmarks trace (bench_trace, trace_counts): camera rays, rays
 // spawned off their hits, and shadow rays to the lights.
 
 #include "accel/geometry.h"

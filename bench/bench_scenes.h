@@ -1,5 +1,5 @@
 #pragma once
-// The scenes the tracing benchmarks name (bench_trace): the generators' scenes,
+// The scenes the tracing benchmarks name (bench_trace, trace_counts): the generators' scenes,
 // random1M, the shared meshes and the triangle scaling figure's scenes.
 
 #include "scenes_gen/generators.h"

@@ -1,5 +1,5 @@
 #pragma once
-// How the tracing benchmarks (bench_trace) check a structure's answers against
+// How the tracing benchmarks (bench_trace, trace_counts) check a structure's answers against
 // naive's (or a reference checked against naive's) before they time or count it.
 
 #include "accel/geometry.h"
