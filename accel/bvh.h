@@ -92,7 +92,10 @@ class Bvh {
   /// so that leaves test them in SIMD for leaf functions that accept a precomputed t
   /// (sphere_soa.h). The time it takes is added to stats().build_ms.
   void attach_spheres(std::span<const SphereShape> spheres) {
-    attach_sphere_leaves(kName, prim_ids_, spheres, spheres_, stats_);
+    std::vector<LeafRange> leaves;
+    for (const BvhNode& n : nodes_)
+      if (n.is_leaf()) leaves.push_back({n.first, n.count});
+    attach_sphere_leaves(kName, prim_ids_, leaves, spheres, spheres_, stats_);
   }
 
   const BvhParams& params() const { return params_; }

@@ -143,7 +143,12 @@ class KdTree {
   /// so that leaves test them in SIMD for leaf functions that accept a precomputed t
   /// (sphere_soa.h). The time it takes is added to stats().build_ms.
   void attach_spheres(std::span<const SphereShape> spheres) {
-    attach_sphere_leaves(kName, prim_ids_, spheres, spheres_, stats_);
+    std::vector<LeafRange> leaves;  // the leaves' primitives, and the inner nodes' (every_level)
+    for (const KdNode& n : nodes_)
+      if (n.is_leaf() && n.prim_count() > 0) leaves.push_back({n.prim_begin(), n.prim_count()});
+    for (const KdPrimRange& r : inner_prims_)
+      if (r.count > 0) leaves.push_back({r.begin, r.count});
+    attach_sphere_leaves(kName, prim_ids_, leaves, spheres, spheres_, stats_);
   }
 
   const KdTreeParams& params() const { return params_; }

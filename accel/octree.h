@@ -104,7 +104,10 @@ class Octree {
   /// so that leaves test them in SIMD for leaf functions that accept a precomputed t
   /// (sphere_soa.h). The time it takes is added to stats().build_ms.
   void attach_spheres(std::span<const SphereShape> spheres) {
-    attach_sphere_leaves(kName, prim_ids_, spheres, spheres_, stats_);
+    std::vector<LeafRange> leaves;  // every cell's own primitives: a leaf's, or an inner cell's (every_level)
+    for (const OctreeNode& n : nodes_)
+      if (n.prim_count > 0) leaves.push_back({n.prim_begin, n.prim_count});
+    attach_sphere_leaves(kName, prim_ids_, leaves, spheres, spheres_, stats_);
   }
 
   const OctreeParams& params() const { return params_; }

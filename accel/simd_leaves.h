@@ -19,6 +19,12 @@
 
 namespace accel {
 
+/// A leaf's range of a structure's id array, ids[first, first + count): what the SIMD leaves
+/// (SphereSoA, TriangleSoA) store their shapes by, one contiguous piece per leaf.
+struct LeafRange {
+  std::uint32_t first = 0, count = 0;
+};
+
 /// A leaf function that can take a t computed elsewhere: accept(id, t, ray) must do exactly
 /// what leaf_fn(id, ray) does when leaf_fn's own test of `id` gives t. The tracer's leaf
 /// functions provide it; with it a structure holding SphereSoA tests spheres in SIMD. A
@@ -72,14 +78,6 @@ void attach_leaf_shapes(const char* structure, const char* what, std::span<const
   fill(soa);
   stats.memory_bytes += soa.memory_bytes();
   stats.build_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-}
-
-/// attach_leaf_shapes filling `soa` by soa.build(ids, shapes), for the structure's id array
-/// `ids` (duplicated references included).
-template <class SoA, class Shape>
-void attach_leaf_shapes(const char* structure, const char* what, std::span<const std::uint32_t> ids,
-                        std::span<const Shape> shapes, SoA& soa, BuildStats& stats) {
-  attach_leaf_shapes(structure, what, shapes, soa, stats, [&](SoA& s) { s.build(ids, shapes); });
 }
 
 }  // namespace accel

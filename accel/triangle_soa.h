@@ -28,11 +28,6 @@ class TriangleSoA {
   /// Triangles tested per SIMD step.
   static constexpr std::uint32_t kLanes = std::uint32_t(Batch::size);
 
-  /// A leaf's range of the id array.
-  struct LeafRange {
-    std::uint32_t first = 0, count = 0;
-  };
-
   /// Fills the rows of every leaf of `leaves` (disjoint ranges of `ids`, every id <
   /// triangles.size()); no triangles leave it empty. Runs in parallel loops (triangle_soa.cpp),
   /// within the caller's TBB arena.

@@ -239,7 +239,7 @@ TEST(Triangle, LeafRowsGiveEveryLeafItsOwnTrianglesAtAnyCount) {
   std::mt19937 rng(31);
   std::uniform_real_distribution<float> u(-1.0f, 1.0f);
   std::vector<accel::TriangleShape> shapes;
-  std::vector<accel::TriangleSoA::LeafRange> leaves;
+  std::vector<accel::LeafRange> leaves;
   for (std::uint32_t count = 1, first = 0; count <= 19; first += count, ++count) leaves.push_back({first, count});
   const std::uint32_t n = leaves.back().first + leaves.back().count;
   for (std::uint32_t i = 0; i < n; ++i) {

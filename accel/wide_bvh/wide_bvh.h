@@ -117,7 +117,7 @@ class WideBvh {
   void attach_spheres(std::span<const SphereShape> spheres) {
     stats_.memory_bytes -= leaf_boxes_.memory_bytes();
     leaf_boxes_.clear();  // sphere leaves test the spheres themselves
-    attach_sphere_leaves(kName, prim_ids_, spheres, spheres_, stats_);
+    attach_sphere_leaves(kName, prim_ids_, leaf_ranges(), spheres, spheres_, stats_);
   }
 
   /// Stores the triangles of a triangle-only scene (triangles[i] is primitive i) beside the
@@ -738,6 +738,15 @@ class WideBvh {
   /// The nodes, prim_ids_ and the tree's counts in stats_ by a spatial-split build of at most
   /// `max_refs` references (wide_bvh_spatial.cpp).
   void build_spatial(std::span<const Aabb> boxes, const PrimitiveOverlap& overlap, std::uint64_t max_refs);
+  /// The leaves' ranges of prim_ids_, which SIMD leaves store their shapes by.
+  std::vector<LeafRange> leaf_ranges() const {
+    std::vector<LeafRange> leaves;
+    leaves.reserve(stats_.leaves);
+    for (const Node& n : nodes_)
+      for (int i = 0; i < W; ++i)
+        if (n.count[i] > 0) leaves.push_back({n.child[i], n.count[i]});
+    return leaves;
+  }
   std::uint64_t memory_bytes() const {
     return nodes_.size() * sizeof(Node) + prim_ids_.size() * sizeof(std::uint32_t) + spheres_.memory_bytes() +
            triangles_.memory_bytes() + leaf_boxes_.memory_bytes();

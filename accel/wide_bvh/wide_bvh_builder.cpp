@@ -271,12 +271,7 @@ template <int W>
 void WideBvh<W>::attach_triangles(std::span<const TriangleShape> triangles) {
   stats_.memory_bytes -= leaf_boxes_.memory_bytes();
   leaf_boxes_.clear();  // triangle leaves test the triangles themselves
-  // The leaves' ranges of the id array, which the triangles are stored by.
-  std::vector<TriangleSoA::LeafRange> leaves;
-  leaves.reserve(stats_.leaves);
-  for (const Node& n : nodes_)
-    for (int i = 0; i < W; ++i)
-      if (n.count[i] > 0) leaves.push_back({n.child[i], n.count[i]});
+  const std::vector<LeafRange> leaves = leaf_ranges();
   run_with_build_threads(params_.build_threads, [&] {
     attach_leaf_shapes(kName, "triangles", triangles, triangles_, stats_,
                        [&](TriangleSoA& soa) { soa.build(prim_ids_, leaves, triangles); });
