@@ -4,9 +4,10 @@
 // leaf-function call each. A leaf over ids[first, first + count) owns floats [4 first,
 // 4 (first + count)): four rows of `count` floats (the centres' x, y and z, the radii). A leaf's
 // spheres are one contiguous piece of memory (16 bytes a sphere, two or three cache lines for a
-// leaf of eight), where one array per coordinate touched four places: on spheres8000, 20% fewer
-// L1 misses on incoherent rays by scripts/count_trace (docs/benchmarks.md). Duplicated
-// references (octree and kd-tree `leaves` placement) are duplicated here too.
+// leaf of eight), where one array per coordinate touched four places: on spheres8000, 17-22%
+// fewer simulated L1 misses on incoherent and shadow rays (scripts/count_trace,
+// docs/benchmarks.md). Duplicated references (octree and kd-tree `leaves` placement) are
+// duplicated here too.
 
 #include "cache_line_allocator.h"
 #include "geometry.h"
