@@ -16,8 +16,10 @@
 //
 //   build/bin/trace_counts --scene spheres8000 --accel bvh8 [--rays camera|incoherent|shadow]
 //                          [--knobs JSON] [--resolution 1024x768] [--passes 1]
+//   build/bin/trace_counts --build-isa     # the ISA the build targets: valgrind runs no AVX-512
 
 #include "accel/accel.h"
+#include "accel/isa.h"
 #include "bench_rays.h"
 #include "bench_scenes.h"
 #include "bench_validation.h"
@@ -126,12 +128,18 @@ int main(int argc, char** argv) {
   app.add_option("--knobs", knobs_text, "the structure's knobs as a JSON object, e.g. '{\"traversal_cost\": 3}'");
   app.add_option("--passes", passes, "traces of the rays counted")->check(CLI::Range(1, 1000));
   app.add_option("--resolution", resolution, "camera rays WIDTHxHEIGHT (bench_trace's: 1024x768)");
+  bool print_isa = false;
+  app.add_flag("--build-isa", print_isa, "print the ISA this build targets and exit (valgrind runs no AVX-512)");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() == 0) return app.exit(e);
     std::fprintf(stderr, "trace_counts: %s\n", e.what());
     return 2;
+  }
+  if (print_isa) {
+    std::printf("%s\n", accel::isa_name(accel::build_isa()));
+    return 0;
   }
   int width = 0, height = 0;
   char tail = 0;
